@@ -1,0 +1,13 @@
+// Umbrella header: everything the library offers.
+#pragma once
+
+#include "facesocial/datasets.hpp"
+#include "facesocial/detection.hpp"
+#include "facesocial/detection_eval.hpp"
+#include "facesocial/error.hpp"
+#include "facesocial/face_detector.hpp"
+#include "facesocial/face_normalizer.hpp"
+#include "facesocial/front_end.hpp"
+#include "facesocial/image_io.hpp"
+#include "facesocial/skin_filter.hpp"
+#include "facesocial/version.hpp"
