@@ -20,6 +20,8 @@ commands:
         detect faces, skin-filter and normalise them; --out writes annotated images and face crops
   eval detection [--data DIR] [--json]
         detector recall / false positives on dlib_faces and one-face share on Caltech faces
+  eval orl [--data DIR] [--methods ehmm,eigen,fisher,lbph] [--splits N] [--json]
+        ORL protocol: canonical split and N seeded random 5/5 splits per method
   version
         print the library version
 

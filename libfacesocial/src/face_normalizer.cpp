@@ -26,6 +26,10 @@ FaceNormalizer::FaceNormalizer(const NormalizerParams& params) : params_(params)
     params_.validate();
     const cv::Size s = params_.output_size;
     mask_ = cv::Mat::zeros(s, CV_8UC1);
+    if (!params_.elliptical_mask) {
+        mask_.setTo(255);
+        return;
+    }
     const double a = s.width / 2.0 * params_.ellipse_width, b = s.height / 2.0 * params_.ellipse_height;
     const double cx = s.width / 2.0, cy = s.height / 2.0;
     for (int y = 0; y < s.height; ++y) {

@@ -1,0 +1,47 @@
+// Private representation of an embedded HMM, shared by ehmm.cpp and the classifier bank.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "facesocial/ehmm.hpp"
+
+namespace facesocial {
+
+using RowMatrixF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct EmbeddedHmm::Impl {
+    EhmmParams params;
+    int dim = 0;  // observation vector length
+    int S = 0;    // super-states
+    int T = 0;    // embedded states in all
+    int M = 0;    // mixtures per state
+    std::vector<int> first;  // first embedded state of each super-state, S + 1 entries
+
+    Eigen::MatrixXf mean;    // T*M x dim
+    Eigen::MatrixXf var;     // T*M x dim
+    Eigen::VectorXf weight;  // T*M, sums to 1 within each state
+    std::vector<float> log_self, log_next;              // per embedded state
+    std::vector<float> super_log_self, super_log_next;  // per super-state
+
+    // Emission log-density of every Gaussian as one linear map of [x^2, x, 1]:
+    // log(w N(x; mu, var)) = sum_j (-x_j^2 / (2 var_j) + x_j mu_j / var_j) + c.
+    Eigen::MatrixXf W;  // (2*dim + 1) x T*M
+
+    void set_topology(const EhmmParams& p);
+    void build_emission_weights();
+
+    /// [x^2, x, 1] rows of the observations.
+    static void features(const Observations& obs, RowMatrixF& F);
+    /// E(n, t) = max over mixtures of the Gaussian log-densities; `best_mixture` (optional)
+    /// receives the arg max.
+    void emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture = nullptr) const;
+    /// Emissions from precomputed Gaussian log-densities G (N x T*M, row stride `stride`).
+    void reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
+                         std::vector<int>* best_mixture) const;
+    /// Doubly embedded Viterbi; fills `seg` when not null.
+    double viterbi(const RowMatrixF& E, cv::Size grid, EhmmSegmentation* seg) const;
+};
+
+}  // namespace facesocial
