@@ -201,13 +201,22 @@ double EmbeddedHmm::Impl::viterbi(const RowMatrixF& E, cv::Size grid, EhmmSegmen
 
 namespace {
 
-/// Deterministic k-means (evenly spaced seeds, Lloyd iterations); returns the cluster of each row.
+/// Deterministic k-means: farthest-first seeds (the first is the row farthest from the mean,
+/// each next one the row farthest from the seeds so far), then Lloyd iterations. Returns the
+/// cluster of each row. Seeds spread over the data keep two mixtures from starting inside one
+/// cluster, which hard (Viterbi) re-estimation could not undo.
 std::vector<int> kmeans(const Eigen::MatrixXf& X, int k) {
     const Eigen::Index n = X.rows();
     std::vector<int> label(n, 0);
     if (n == 0 || k <= 1) return label;
     Eigen::MatrixXf centers(k, X.cols());
-    for (int j = 0; j < k; ++j) centers.row(j) = X.row(std::min<Eigen::Index>(n - 1, Eigen::Index((j + 0.5) * n / k)));
+    Eigen::VectorXf nearest = (X.rowwise() - X.colwise().mean()).rowwise().squaredNorm();
+    for (int j = 0; j < k; ++j) {
+        Eigen::Index far;
+        nearest.maxCoeff(&far);
+        centers.row(j) = X.row(far);
+        nearest = nearest.cwiseMin((X.rowwise() - centers.row(j)).rowwise().squaredNorm());
+    }
     for (int iter = 0; iter < 10; ++iter) {
         bool changed = false;
         for (Eigen::Index i = 0; i < n; ++i) {
