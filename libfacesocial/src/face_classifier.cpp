@@ -6,6 +6,7 @@
 #include <opencv2/face.hpp>
 
 #include "checks.hpp"
+#include "ehmm_impl.hpp"
 #include "parallel.hpp"
 
 namespace facesocial {
@@ -72,8 +73,15 @@ public:
     std::vector<double> scores(const cv::Mat& face) const override {
         if (models_.empty()) throw std::logic_error("EhmmClassifier::scores: not trained");
         const Observations o = extract_observations(face, params_.ehmm.observations);
+        // The [x^2, x, 1] features are the same for every person: build them once.
+        thread_local RowMatrixF F, E;
+        EmbeddedHmm::Impl::features(o, F);
         std::vector<double> s(models_.size());
-        for (std::size_t p = 0; p < models_.size(); ++p) s[p] = models_[p].score(o);
+        for (std::size_t p = 0; p < models_.size(); ++p) {
+            const EmbeddedHmm::Impl& m = models_[p].impl();
+            m.emissions(F, E);
+            s[p] = m.viterbi(E, o.grid, nullptr) / double(o.grid.area());
+        }
         return s;
     }
 

@@ -1,0 +1,90 @@
+// Embedded-HMM stages on one core: DCT observation extraction, emissions of all Gaussians,
+// doubly embedded Viterbi, scoring one face against a 40-person bank, training one person.
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+
+#include "../../libfacesocial/src/ehmm_impl.hpp"
+#include "facesocial/datasets.hpp"
+#include "facesocial/face_classifier.hpp"
+#include "facesocial/face_normalizer.hpp"
+#include "facesocial/image_io.hpp"
+
+using namespace facesocial;
+
+namespace {
+
+const std::vector<std::vector<cv::Mat>>& orl_faces() {
+    static const auto faces = [] {
+        NormalizerParams np;
+        np.elliptical_mask = false;
+        const FaceNormalizer n(np);
+        std::vector<std::vector<cv::Mat>> f;
+        for (const auto& p : load_identity_folders(data_root() / "orl")) {
+            f.emplace_back();
+            for (const auto& img : p.images) f.back().push_back(n.normalize(load_image(img, ImageColor::Grey)).pixels);
+        }
+        return f;
+    }();
+    return faces;
+}
+
+std::vector<cv::Mat> first5(int person) {
+    return {orl_faces()[person].begin(), orl_faces()[person].begin() + 5};
+}
+
+void BM_DctObservations(benchmark::State& state) {
+    const EhmmParams p;
+    for (auto _ : state) benchmark::DoNotOptimize(extract_observations(orl_faces()[0][0], p.observations));
+}
+BENCHMARK(BM_DctObservations)->Unit(benchmark::kMicrosecond);
+
+void BM_Emissions(benchmark::State& state) {
+    const EmbeddedHmm m = EmbeddedHmm::train(first5(0));
+    const Observations o = extract_observations(orl_faces()[0][6], m.params().observations);
+    RowMatrixF F, E;
+    EmbeddedHmm::Impl::features(o, F);
+    for (auto _ : state) {
+        m.impl().emissions(F, E);
+        benchmark::DoNotOptimize(E.data());
+    }
+}
+BENCHMARK(BM_Emissions)->Unit(benchmark::kMicrosecond);
+
+void BM_Viterbi(benchmark::State& state) {
+    const EmbeddedHmm m = EmbeddedHmm::train(first5(0));
+    const Observations o = extract_observations(orl_faces()[0][6], m.params().observations);
+    RowMatrixF F, E;
+    EmbeddedHmm::Impl::features(o, F);
+    m.impl().emissions(F, E);
+    for (auto _ : state) benchmark::DoNotOptimize(m.impl().viterbi(E, o.grid, nullptr));
+}
+BENCHMARK(BM_Viterbi)->Unit(benchmark::kMicrosecond);
+
+void BM_ScoreAgainst40People(benchmark::State& state) {
+    ClassifierParams p;
+    p.num_threads = 1;
+    auto c = FaceClassifier::create(p);
+    std::vector<std::vector<cv::Mat>> train;
+    for (int i = 0; i < 40; ++i) train.push_back(first5(i));
+    c->train(train);
+    for (auto _ : state) benchmark::DoNotOptimize(c->scores(orl_faces()[3][7]));
+}
+BENCHMARK(BM_ScoreAgainst40People)->Unit(benchmark::kMillisecond);
+
+void BM_TrainOnePersonFrom5(benchmark::State& state) {
+    const auto faces = first5(0);
+    for (auto _ : state) benchmark::DoNotOptimize(EmbeddedHmm::train(faces));
+}
+BENCHMARK(BM_TrainOnePersonFrom5)->Unit(benchmark::kMillisecond);
+
+void BM_Train40PeopleBank(benchmark::State& state) {
+    std::vector<std::vector<cv::Mat>> train;
+    for (int i = 0; i < 40; ++i) train.push_back(first5(i));
+    auto c = FaceClassifier::create();
+    for (auto _ : state) c->train(train);
+}
+BENCHMARK(BM_Train40PeopleBank)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
