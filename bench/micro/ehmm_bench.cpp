@@ -38,11 +38,19 @@ void BM_DctObservations(benchmark::State& state) {
 }
 BENCHMARK(BM_DctObservations)->Unit(benchmark::kMicrosecond);
 
+/// Person 0's model and the features of one of their test faces.
+struct ModelAndFace {
+    EmbeddedHmm model = EmbeddedHmm::train(first5(0));
+    Observations obs = extract_observations(orl_faces()[0][6], model.params().observations);
+    RowMatrixF F;
+    ModelAndFace() { EmbeddedHmm::Impl::features(obs, F); }
+};
+
 void BM_Emissions(benchmark::State& state) {
-    const EmbeddedHmm m = EmbeddedHmm::train(first5(0));
-    const Observations o = extract_observations(orl_faces()[0][6], m.params().observations);
-    RowMatrixF F, E;
-    EmbeddedHmm::Impl::features(o, F);
+    const ModelAndFace x;
+    const EmbeddedHmm& m = x.model;
+    const RowMatrixF& F = x.F;
+    RowMatrixF E;
     for (auto _ : state) {
         m.impl().emissions(F, E);
         benchmark::DoNotOptimize(E.data());
@@ -51,12 +59,10 @@ void BM_Emissions(benchmark::State& state) {
 BENCHMARK(BM_Emissions)->Unit(benchmark::kMicrosecond);
 
 void BM_Viterbi(benchmark::State& state) {
-    const EmbeddedHmm m = EmbeddedHmm::train(first5(0));
-    const Observations o = extract_observations(orl_faces()[0][6], m.params().observations);
-    RowMatrixF F, E;
-    EmbeddedHmm::Impl::features(o, F);
-    m.impl().emissions(F, E);
-    for (auto _ : state) benchmark::DoNotOptimize(m.impl().viterbi(E, o.grid, nullptr));
+    const ModelAndFace x;
+    RowMatrixF E;
+    x.model.impl().emissions(x.F, E);
+    for (auto _ : state) benchmark::DoNotOptimize(x.model.impl().viterbi(E, x.obs.grid, nullptr));
 }
 BENCHMARK(BM_Viterbi)->Unit(benchmark::kMicrosecond);
 

@@ -459,12 +459,17 @@ void require_grid(const EmbeddedHmm::Impl& m, const Observations& o, const char*
 double EmbeddedHmm::score(const Observations& o) const {
     const Impl& m = impl();
     require_grid(m, o, "EmbeddedHmm::score");
+    thread_local RowMatrixF F;
+    Impl::features(o, F);
+    return m.score_features(F, o.grid);
+}
+
+double EmbeddedHmm::Impl::score_features(const RowMatrixF& F, cv::Size grid) const {
     // Per-thread scratch: scoring runs per face and per person, and fresh buffers of this size
     // would go through mmap and page faults on every call.
-    thread_local RowMatrixF F, E;
-    Impl::features(o, F);
-    m.emissions(F, E);
-    return m.viterbi(E, o.grid, nullptr) / double(o.grid.area());
+    thread_local RowMatrixF E;
+    emissions(F, E);
+    return viterbi(E, grid, nullptr) / double(grid.area());
 }
 
 EhmmSegmentation EmbeddedHmm::segment(const Observations& o) const {

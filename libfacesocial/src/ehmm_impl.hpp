@@ -40,6 +40,9 @@ struct EmbeddedHmm::Impl {
     /// Emissions from precomputed Gaussian log-densities G (N x T*M, row stride `stride`).
     void reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
                          std::vector<int>* best_mixture) const;
+    /// The scaled log-probability (Viterbi log-likelihood per observation) of a face whose
+    /// [x^2, x, 1] features are F; uses per-thread scratch for the emissions.
+    double score_features(const RowMatrixF& F, cv::Size grid) const;
     /// Doubly embedded Viterbi; fills `seg` when not null.
     double viterbi(const RowMatrixF& E, cv::Size grid, EhmmSegmentation* seg) const;
 };

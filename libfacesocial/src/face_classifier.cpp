@@ -74,14 +74,10 @@ public:
         if (models_.empty()) throw std::logic_error("EhmmClassifier::scores: not trained");
         const Observations o = extract_observations(face, params_.ehmm.observations);
         // The [x^2, x, 1] features are the same for every person: build them once.
-        thread_local RowMatrixF F, E;
+        thread_local RowMatrixF F;
         EmbeddedHmm::Impl::features(o, F);
         std::vector<double> s(models_.size());
-        for (std::size_t p = 0; p < models_.size(); ++p) {
-            const EmbeddedHmm::Impl& m = models_[p].impl();
-            m.emissions(F, E);
-            s[p] = m.viterbi(E, o.grid, nullptr) / double(o.grid.area());
-        }
+        for (std::size_t p = 0; p < models_.size(); ++p) s[p] = models_[p].impl().score_features(F, o.grid);
         return s;
     }
 
