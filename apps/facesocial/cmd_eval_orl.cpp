@@ -74,16 +74,10 @@ int cmd_eval_orl(const std::vector<std::string>& argv) {
     const bool json = args.flag("--json");
 
     // Faces are already cropped: normalise the whole image, without the elliptical mask.
-    NormalizerParams np;
-    np.elliptical_mask = false;
-    const FaceNormalizer normalizer(np);
-    const auto people = load_identity_folders(root / "orl");
-    std::vector<std::vector<cv::Mat>> faces(people.size());
-    for (std::size_t p = 0; p < people.size(); ++p) {
-        if (people[p].images.size() < 10)
-            throw FileError(people[p].name, "ORL person folder with fewer than 10 images");
-        for (const auto& f : people[p].images) faces[p].push_back(normalizer.normalize(load_image(f, ImageColor::Grey)).pixels);
-    }
+    const FaceSet set = load_cropped_faces(root / "orl");
+    const auto& faces = set.faces;
+    for (std::size_t p = 0; p < faces.size(); ++p)
+        if (faces[p].size() < 10) throw FileError((root / "orl" / set.names[p]).string(), "ORL person folder with fewer than 10 images");
 
     auto make_split = [&](const std::vector<std::vector<int>>& order, std::vector<std::vector<cv::Mat>>& train,
                           std::vector<std::vector<cv::Mat>>& test) {

@@ -14,17 +14,7 @@ using namespace facesocial;
 namespace {
 
 const std::vector<std::vector<cv::Mat>>& orl_faces() {
-    static const auto faces = [] {
-        NormalizerParams np;
-        np.elliptical_mask = false;
-        const FaceNormalizer n(np);
-        std::vector<std::vector<cv::Mat>> f;
-        for (const auto& p : load_identity_folders(data_root() / "orl")) {
-            f.emplace_back();
-            for (const auto& img : p.images) f.back().push_back(n.normalize(load_image(img, ImageColor::Grey)).pixels);
-        }
-        return f;
-    }();
+    static const auto faces = load_cropped_faces(data_root() / "orl").faces;
     return faces;
 }
 

@@ -8,6 +8,7 @@
 
 #include "facesocial/error.hpp"
 #include "facesocial/image_io.hpp"
+#include "parallel.hpp"
 
 namespace facesocial {
 
@@ -116,6 +117,24 @@ bool natural_less(const std::string& a, const std::string& b) {
         }
     }
     return a.size() - i < b.size() - j;
+}
+
+FaceSet load_cropped_faces(const std::filesystem::path& folder, const NormalizerParams& params) {
+    const FaceNormalizer normalizer(params);
+    const auto people = load_identity_folders(folder);
+    FaceSet set;
+    for (const auto& p : people) {
+        set.names.push_back(p.name);
+        set.faces.emplace_back(p.images.size());
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> jobs;
+    for (std::size_t p = 0; p < people.size(); ++p)
+        for (std::size_t i = 0; i < people[p].images.size(); ++i) jobs.emplace_back(p, i);
+    detail::parallel_for(jobs.size(), [&](std::size_t j) {
+        const auto [p, i] = jobs[j];
+        set.faces[p][i] = normalizer.normalize(load_image(people[p].images[i], ImageColor::Grey)).pixels;
+    });
+    return set;
 }
 
 }  // namespace facesocial

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "binary_io.hpp"
 #include "checks.hpp"
 #include "ehmm_impl.hpp"
 #include "facesocial/error.hpp"
@@ -548,32 +549,22 @@ EmbeddedHmm EmbeddedHmm::random(const EhmmParams& params, std::mt19937& rng, dou
 
 namespace {
 
-template <class T>
-void put(std::ostream& out, const T& v) {
-    out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
+using detail::get_bytes;
+using detail::put;
+using detail::put_bytes;
+constexpr const char* kWhat = "embedded HMM";
 
 template <class T>
 T get(std::istream& in) {
-    T v{};
-    if (!in.read(reinterpret_cast<char*>(&v), sizeof(T))) throw ModelFormatError("<stream>", "embedded HMM truncated");
-    return v;
+    return detail::get<T>(in, kWhat);
 }
 
-void put_floats(std::ostream& out, const float* p, std::size_t n) {
-    out.write(reinterpret_cast<const char*>(p), std::streamsize(n * sizeof(float)));
-}
-
-void get_floats(std::istream& in, float* p, std::size_t n) {
-    if (!in.read(reinterpret_cast<char*>(p), std::streamsize(n * sizeof(float))))
-        throw ModelFormatError("<stream>", "embedded HMM truncated");
-}
+void put_floats(std::ostream& out, const float* p, std::size_t n) { put_bytes(out, p, n * sizeof(float)); }
+void get_floats(std::istream& in, float* p, std::size_t n) { get_bytes(in, p, n * sizeof(float), kWhat); }
 
 }  // namespace
 
-void EmbeddedHmm::write(std::ostream& out) const {
-    const Impl& m = impl();
-    const EhmmParams& p = m.params;
+void write_ehmm_params(std::ostream& out, const EhmmParams& p) {
     put<int32_t>(out, p.observations.face_size.width);
     put<int32_t>(out, p.observations.face_size.height);
     put<int32_t>(out, p.observations.block_size);
@@ -587,20 +578,9 @@ void EmbeddedHmm::write(std::ostream& out) const {
     put<double>(out, p.tolerance);
     put<double>(out, p.variance_floor);
     put<double>(out, p.min_transition);
-    const std::size_t K = std::size_t(m.T) * m.M;
-    // Eigen matrices are column-major: write row by row for a layout independent of that.
-    for (std::size_t k = 0; k < K; ++k)
-        for (int d = 0; d < m.dim; ++d) put<float>(out, m.mean(Eigen::Index(k), d));
-    for (std::size_t k = 0; k < K; ++k)
-        for (int d = 0; d < m.dim; ++d) put<float>(out, m.var(Eigen::Index(k), d));
-    put_floats(out, m.weight.data(), K);
-    put_floats(out, m.log_self.data(), m.T);
-    put_floats(out, m.log_next.data(), m.T);
-    put_floats(out, m.super_log_self.data(), m.S);
-    put_floats(out, m.super_log_next.data(), m.S);
 }
 
-EmbeddedHmm EmbeddedHmm::read(std::istream& in) {
+EhmmParams read_ehmm_params(std::istream& in) {
     EhmmParams p;
     p.observations.face_size.width = get<int32_t>(in);
     p.observations.face_size.height = get<int32_t>(in);
@@ -622,6 +602,28 @@ EmbeddedHmm EmbeddedHmm::read(std::istream& in) {
     } catch (const std::invalid_argument& e) {
         throw ModelFormatError("<stream>", std::string("embedded HMM with invalid parameters: ") + e.what());
     }
+    return p;
+}
+
+void EmbeddedHmm::write(std::ostream& out) const {
+    const Impl& m = impl();
+    const EhmmParams& p = m.params;
+    write_ehmm_params(out, p);
+    const std::size_t K = std::size_t(m.T) * m.M;
+    // Eigen matrices are column-major: write row by row for a layout independent of that.
+    for (std::size_t k = 0; k < K; ++k)
+        for (int d = 0; d < m.dim; ++d) put<float>(out, m.mean(Eigen::Index(k), d));
+    for (std::size_t k = 0; k < K; ++k)
+        for (int d = 0; d < m.dim; ++d) put<float>(out, m.var(Eigen::Index(k), d));
+    put_floats(out, m.weight.data(), K);
+    put_floats(out, m.log_self.data(), m.T);
+    put_floats(out, m.log_next.data(), m.T);
+    put_floats(out, m.super_log_self.data(), m.S);
+    put_floats(out, m.super_log_next.data(), m.S);
+}
+
+EmbeddedHmm EmbeddedHmm::read(std::istream& in) {
+    const EhmmParams p = read_ehmm_params(in);
     auto impl = std::make_shared<Impl>();
     Impl& m = *impl;
     m.set_topology(p);

@@ -1,6 +1,7 @@
 // Private representation of an embedded HMM, shared by ehmm.cpp and the classifier bank.
 #pragma once
 
+#include <iosfwd>
 #include <vector>
 
 #include <Eigen/Core>
@@ -46,5 +47,10 @@ struct EmbeddedHmm::Impl {
     /// Doubly embedded Viterbi; fills `seg` when not null.
     double viterbi(const RowMatrixF& E, cv::Size grid, EhmmSegmentation* seg) const;
 };
+
+/// The parameters as stored at the head of a model (and in bank files).
+void write_ehmm_params(std::ostream& out, const EhmmParams& p);
+/// Reads and validates them; ModelFormatError("<stream>", ...) when short or invalid.
+EhmmParams read_ehmm_params(std::istream& in);
 
 }  // namespace facesocial

@@ -9,6 +9,12 @@
 
 namespace facesocial {
 
+NormalizerParams NormalizerParams::cropped() {
+    NormalizerParams p;
+    p.elliptical_mask = false;
+    return p;
+}
+
 void NormalizerParams::validate() const {
     auto bad = [](const std::string& field, const std::string& expected, const std::string& got) {
         throw std::invalid_argument("NormalizerParams: expected " + field + " " + expected + ", got " + got);

@@ -25,9 +25,7 @@ EhmmParams small_params() {
 }
 
 std::vector<cv::Mat> orl_faces(int person, int from, int to) {
-    NormalizerParams np;
-    np.elliptical_mask = false;
-    const FaceNormalizer n(np);
+    const FaceNormalizer n(NormalizerParams::cropped());
     std::vector<cv::Mat> out;
     for (int i = from; i <= to; ++i)
         out.push_back(n.normalize(load_image(test::data() / "orl" / ("s" + std::to_string(person)) /

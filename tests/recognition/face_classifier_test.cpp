@@ -17,15 +17,10 @@ struct OrlSplit {
 
 const OrlSplit& orl() {
     static const OrlSplit split = [] {
-        NormalizerParams np;
-        np.elliptical_mask = false;
-        const FaceNormalizer n(np);
         OrlSplit s;
-        for (const auto& person : load_identity_folders(test::data() / "orl")) {
-            s.train.emplace_back();
-            s.test.emplace_back();
-            for (std::size_t i = 0; i < person.images.size(); ++i)
-                (i < 5 ? s.train : s.test).back().push_back(n.normalize(load_image(person.images[i], ImageColor::Grey)).pixels);
+        for (const auto& person : load_cropped_faces(test::data() / "orl").faces) {
+            s.train.emplace_back(person.begin(), person.begin() + 5);
+            s.test.emplace_back(person.begin() + 5, person.end());
         }
         return s;
     }();

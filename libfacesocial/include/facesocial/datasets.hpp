@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "facesocial/face_normalizer.hpp"
+
 namespace facesocial {
 
 /// The data root: $FACESOCIAL_DATA. Throws FileError when the variable is unset or does not
@@ -38,6 +40,17 @@ struct PersonImages {
 /// sorted by natural order of their folder names ("s2" before "s10"); folders without images are
 /// skipped. Throws FileError when `folder` is not a directory or holds no person.
 std::vector<PersonImages> load_identity_folders(const std::filesystem::path& folder);
+
+/// Identity folders loaded as normalised faces, one list per person.
+struct FaceSet {
+    std::vector<std::string> names;            ///< folder names, natural order
+    std::vector<std::vector<cv::Mat>> faces;   ///< faces[p]: person p's normalised faces (CV_32F)
+};
+
+/// Loads load_identity_folders(folder), normalising every whole image as one cropped face
+/// (grey). Throws FileError for a missing folder or an unreadable image.
+FaceSet load_cropped_faces(const std::filesystem::path& folder,
+                           const NormalizerParams& params = NormalizerParams::cropped());
 
 /// Natural-order comparison of names: digit runs compare as numbers.
 bool natural_less(const std::string& a, const std::string& b);

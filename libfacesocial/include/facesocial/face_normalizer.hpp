@@ -25,6 +25,9 @@ struct NormalizerParams {
 
     /// Throws std::invalid_argument naming the first invalid field.
     void validate() const;
+
+    /// For faces that are already tightly cropped (ORL, Essex crops): no elliptical mask.
+    static NormalizerParams cropped();
 };
 
 /// A normalised face: pixels with zero mean and unit standard deviation inside the ellipse,

@@ -1,0 +1,288 @@
+// The classifier bank on real ORL faces: enrolment, per-person retraining, ranking and the
+// unknown rule, order independence, save / load, corrupt files, concurrent scoring.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "facesocial/classifier_bank.hpp"
+#include "facesocial/datasets.hpp"
+#include "facesocial/error.hpp"
+#include "support/test_data.hpp"
+
+using namespace facesocial;
+
+namespace {
+
+const FaceSet& orl() {
+    static const FaceSet set = load_cropped_faces(test::data() / "orl");
+    return set;
+}
+
+std::vector<cv::Mat> train_faces(std::size_t p) { return {orl().faces[p].begin(), orl().faces[p].begin() + 5}; }
+
+ClassifierBankParams cropped_params(ClassifierKind kind = ClassifierKind::Ehmm) {
+    ClassifierBankParams p;
+    p.classifier.kind = kind;
+    p.normalizer = NormalizerParams::cropped();
+    return p;
+}
+
+/// A bank of the first `people` ORL people (images 1-5), enrolled in the given order.
+ClassifierBank make_bank(const std::vector<std::size_t>& order, ClassifierKind kind = ClassifierKind::Ehmm) {
+    ClassifierBank bank(cropped_params(kind));
+    for (std::size_t p : order) bank.add_faces(orl().names[p], train_faces(p));
+    bank.train();
+    return bank;
+}
+
+std::vector<std::size_t> first(std::size_t n) {
+    std::vector<std::size_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = i;
+    return v;
+}
+
+double score_of(const BankScores& s, const std::string& name) {
+    for (std::size_t i = 0; i < s.names.size(); ++i)
+        if (s.names[i] == name) return s.scores[i];
+    ADD_FAILURE() << name << " not scored";
+    return NAN;
+}
+
+}  // namespace
+
+TEST(Decision, RanksByScoreThenNameAndAppliesTheRule) {
+    const std::vector<std::string> names{"carol", "alice", "bob"};
+    const std::vector<double> scores{-1.0, -3.0, -1.0};
+    const auto ranked = rank_candidates(names, scores);
+    ASSERT_EQ(ranked.size(), 3u);
+    EXPECT_EQ(ranked[0].name, "bob");  // tie with carol broken by name
+    EXPECT_EQ(ranked[1].name, "carol");
+    EXPECT_EQ(ranked[2].name, "alice");
+    EXPECT_EQ(rank_candidates(names, scores, 1).size(), 1u);
+    EXPECT_NEAR(score_variance(scores), 8.0 / 9.0, 1e-12);
+
+    UnknownRule rule;
+    EXPECT_TRUE(decide(names, scores, rule).known);
+    rule.min_variance = 1.0;  // 0.889 < 1: too flat
+    EXPECT_FALSE(decide(names, scores, rule).known);
+    rule.min_variance = 0.5;
+    rule.min_score = -0.5;  // winner -1 too weak
+    const Decision d = decide(names, scores, rule);
+    EXPECT_FALSE(d.known);
+    EXPECT_TRUE(d.name.empty());
+    EXPECT_EQ(d.ranked.front().name, "bob");  // second guesses stay available
+    rule.min_score = -2;
+    EXPECT_EQ(decide(names, scores, rule).name, "bob");
+    EXPECT_FALSE(decide({}, {}, UnknownRule{}).known);
+
+    EXPECT_THROW(rank_candidates(names, {1.0}), std::invalid_argument);
+    EXPECT_THROW(rank_candidates({"a"}, {NAN}), std::invalid_argument);
+    EXPECT_THROW(decide(names, scores, UnknownRule{-1.0}), std::invalid_argument);
+}
+
+TEST(ClassifierBank, RecognisesOrlPeopleAndRanksTheTruePersonFirst) {
+    const ClassifierBank bank = make_bank(first(10));
+    EXPECT_TRUE(bank.stale().empty());
+    int correct = 0, total = 0;
+    for (std::size_t p = 0; p < 10; ++p)
+        for (std::size_t i = 5; i < 10; ++i) {
+            const Decision d = bank.decide(orl().faces[p][i]);
+            ASSERT_EQ(d.ranked.size(), 10u);
+            correct += d.known && d.name == orl().names[p];
+            ++total;
+        }
+    EXPECT_GE(double(correct) / total, 0.94) << correct << "/" << total;
+    const auto top3 = bank.rank(orl().faces[3][7], 3);
+    ASSERT_EQ(top3.size(), 3u);
+    EXPECT_GE(top3[0].score, top3[1].score);
+    EXPECT_GE(top3[1].score, top3[2].score);
+}
+
+TEST(ClassifierBank, ScoresDoNotDependOnTheOrderOfPeople) {
+    std::vector<std::size_t> order = first(8);
+    const ClassifierBank a = make_bank(order);
+    std::reverse(order.begin(), order.end());
+    const ClassifierBank b = make_bank(order);
+    for (std::size_t p : {0u, 4u, 7u}) {
+        const BankScores sa = a.scores(orl().faces[p][8]), sb = b.scores(orl().faces[p][8]);
+        for (const std::string& name : sa.names) EXPECT_EQ(score_of(sa, name), score_of(sb, name)) << name;
+        EXPECT_EQ(a.decide(orl().faces[p][8]).name, b.decide(orl().faces[p][8]).name);
+    }
+}
+
+TEST(ClassifierBank, RetrainingOnePersonLeavesTheOthersUntouched) {
+    ClassifierBank bank = make_bank(first(5));
+    const cv::Mat probe = orl().faces[1][6];
+    const BankScores before = bank.scores(probe);
+    bank.add_faces(orl().names[0], {orl().faces[0][5]});
+    EXPECT_EQ(bank.stale(), std::vector<std::string>{orl().names[0]});
+    EXPECT_FALSE(bank.is_trained(orl().names[0]));
+    EXPECT_EQ(bank.face_count(orl().names[0]), 6u);
+    // The stale model still scores until it is replaced.
+    EXPECT_EQ(score_of(bank.scores(probe), orl().names[0]), score_of(before, orl().names[0]));
+    EXPECT_EQ(bank.train(), std::vector<std::string>{orl().names[0]});
+    const BankScores after = bank.scores(probe);
+    for (std::size_t p = 1; p < 5; ++p) EXPECT_EQ(score_of(after, orl().names[p]), score_of(before, orl().names[p]));
+    EXPECT_NE(score_of(after, orl().names[0]), score_of(before, orl().names[0]));
+
+    bank.remove_person(orl().names[2]);
+    EXPECT_FALSE(bank.contains(orl().names[2]));
+    EXPECT_EQ(bank.scores(probe).names.size(), 4u);
+    EXPECT_EQ(bank.people().size(), 4u);
+}
+
+TEST(ClassifierBank, UnknownRuleRejectsAStrangerAtATightMinimumScore) {
+    ClassifierBank bank = make_bank(first(10));
+    // Threshold just under the weakest winning score of the enrolled people's held-out faces.
+    double weakest = INFINITY;
+    for (std::size_t p = 0; p < 10; ++p) weakest = std::min(weakest, bank.decide(orl().faces[p][5]).score);
+    UnknownRule rule;
+    rule.min_score = weakest - 1e-9;
+    bank.set_unknown_rule(rule);
+    for (std::size_t p = 0; p < 10; ++p) EXPECT_TRUE(bank.decide(orl().faces[p][5]).known);
+    rule.min_score = 0;  // log-likelihoods per observation are negative: nothing passes
+    bank.set_unknown_rule(rule);
+    EXPECT_FALSE(bank.decide(orl().faces[20][0]).known);
+    EXPECT_THROW(bank.set_unknown_rule(UnknownRule{NAN}), std::invalid_argument);
+}
+
+TEST(ClassifierBank, SaveThenLoadGivesIdenticalScores) {
+    test::TempDir dir;
+    ClassifierBank bank = make_bank(first(6));
+    bank.add_person("newcomer");  // enrolled, no faces yet
+    UnknownRule rule;
+    rule.min_variance = 0.25;
+    bank.set_unknown_rule(rule);
+    const std::string path = (dir / "bank.fsb").string();
+    bank.save(path);
+    const ClassifierBank loaded = ClassifierBank::load(path);
+    EXPECT_EQ(loaded.people(), bank.people());
+    EXPECT_EQ(loaded.unknown_rule().min_variance, 0.25);
+    EXPECT_EQ(loaded.stale(), bank.stale());
+    EXPECT_EQ(loaded.face_count(orl().names[3]), 5u);
+    for (std::size_t p : {0u, 5u, 30u}) {
+        const BankScores a = bank.scores(orl().faces[p][9]), b = loaded.scores(orl().faces[p][9]);
+        EXPECT_EQ(a.names, b.names);
+        EXPECT_EQ(a.scores, b.scores);
+    }
+    // The loaded bank keeps working: retrain one person.
+    ClassifierBank again = ClassifierBank::load(path);
+    again.add_faces(orl().names[1], {orl().faces[1][5]});
+    again.train(orl().names[1]);
+    EXPECT_TRUE(again.is_trained(orl().names[1]));
+}
+
+TEST(ClassifierBank, JointClassifiersSaveAndLoadToo) {
+    test::TempDir dir;
+    for (ClassifierKind kind : {ClassifierKind::Lbph, ClassifierKind::Eigenfaces}) {
+        const ClassifierBank bank = make_bank(first(5), kind);
+        bank.save((dir / "joint.fsb").string());
+        const ClassifierBank loaded = ClassifierBank::load((dir / "joint.fsb").string());
+        const BankScores a = bank.scores(orl().faces[2][7]), b = loaded.scores(orl().faces[2][7]);
+        EXPECT_EQ(a.names, b.names);
+        for (std::size_t i = 0; i < a.scores.size(); ++i) EXPECT_NEAR(a.scores[i], b.scores[i], 1e-6 * std::abs(a.scores[i]));
+        EXPECT_EQ(loaded.decide(orl().faces[2][7]).name, orl().names[2]) << to_string(kind);
+    }
+}
+
+TEST(ClassifierBank, DamagedFilesGiveClearErrorsAndFailedSavesKeepTheOldFile) {
+    test::TempDir dir;
+    const ClassifierBank bank = make_bank(first(2));
+    const std::string path = (dir / "bank.fsb").string();
+    bank.save(path);
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    auto write = [&](const std::string& name, const std::string& content) {
+        std::ofstream(dir / name, std::ios::binary) << content;
+        return (dir / name).string();
+    };
+    auto message = [](const std::string& p) {
+        try {
+            ClassifierBank::load(p);
+        } catch (const ModelFormatError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message(write("truncated.fsb", bytes.substr(0, bytes.size() / 2))).find("truncated"), std::string::npos);
+    EXPECT_NE(message(write("header.fsb", bytes.substr(0, 20))).find("truncated"), std::string::npos);
+    std::string flipped = bytes;
+    flipped[flipped.size() / 2] ^= 0x40;
+    EXPECT_NE(message(write("flipped.fsb", flipped)).find("checksum"), std::string::npos);
+    EXPECT_NE(message(write("foreign.fsb", "P5\n92 112\n255\n" + std::string(100, 'x'))).find("magic"), std::string::npos);
+    std::string newer = bytes;
+    newer[16] = 9;  // format version 9
+    EXPECT_NE(message(write("newer.fsb", newer)).find("version 9"), std::string::npos);
+    EXPECT_NE(message(write("trailing.fsb", bytes + "x")).find("trailing"), std::string::npos);
+    EXPECT_THROW(ClassifierBank::load((dir / "missing.fsb").string()), FileError);
+
+    // A save that cannot complete leaves the previous file as it was: block the temporary file.
+    ClassifierBank bigger = make_bank(first(3));
+    std::filesystem::create_directory(path + ".tmp-" + std::to_string(::getpid()));
+    EXPECT_THROW(bigger.save(path), FileError);
+    EXPECT_EQ(ClassifierBank::load(path).people().size(), 2u);
+    std::filesystem::remove(path + ".tmp-" + std::to_string(::getpid()));
+    EXPECT_THROW(bank.save((dir / "no_such_folder" / "bank.fsb").string()), FileError);
+}
+
+TEST(ClassifierBank, BadInputsGiveClearErrors) {
+    ClassifierBank bank(cropped_params());
+    EXPECT_THROW(bank.add_person(""), std::invalid_argument);
+    EXPECT_THROW(bank.add_person("tab\tname"), std::invalid_argument);
+    bank.add_person("ann");
+    EXPECT_THROW(bank.add_person("ann"), std::invalid_argument);
+    EXPECT_THROW(bank.train("ann"), std::invalid_argument);  // no faces
+    EXPECT_THROW(bank.train("bob"), std::invalid_argument);  // not enrolled
+    EXPECT_THROW(bank.remove_person("bob"), std::invalid_argument);
+    EXPECT_THROW(bank.add_faces("ann", {cv::Mat(10, 10, CV_32F)}), std::invalid_argument);      // wrong size
+    EXPECT_THROW(bank.add_faces("ann", {cv::Mat(112, 92, CV_8UC3)}), std::invalid_argument);    // colour
+    EXPECT_THROW(bank.add_faces("ann", {cv::Mat(112, 92, CV_64F)}), std::invalid_argument);     // depth
+    EXPECT_THROW(bank.scores(cv::Mat()), std::invalid_argument);
+    EXPECT_TRUE(bank.scores(orl().faces[0][0]).names.empty());  // nobody trained yet
+    EXPECT_FALSE(bank.decide(orl().faces[0][0]).known);
+    try {
+        bank.add_faces("ann", {cv::Mat(10, 10, CV_32F)});
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("92x112"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("10x10"), std::string::npos) << e.what();
+    }
+    ClassifierBankParams p = cropped_params();
+    p.normalizer.output_size = {64, 64};  // differs from the EHMM face size
+    EXPECT_THROW(ClassifierBank{p}, std::invalid_argument);
+}
+
+TEST(ClassifierBank, ScoringWhileRetrainingIsSafe) {
+    ClassifierBank bank = make_bank(first(6));
+    std::atomic<bool> stop{false};
+    std::atomic<int> scored{0}, bad{0};
+    std::vector<std::thread> readers;
+    for (int t = 0; t < 3; ++t)
+        readers.emplace_back([&, t] {
+            std::size_t i = 0;
+            while (!stop) {
+                const cv::Mat& face = orl().faces[(t + i) % 6][5 + i % 5];
+                const Decision d = bank.decide(face);
+                if (d.ranked.size() < 5 || d.ranked.size() > 7 || !std::isfinite(d.score)) ++bad;
+                ++scored, ++i;
+            }
+        });
+    for (int round = 0; round < 4; ++round) {
+        bank.add_faces(orl().names[round % 6], {orl().faces[round % 6][5 + round]});
+        bank.train(orl().names[round % 6]);
+        bank.add_faces(orl().names[6], train_faces(6));
+        bank.train();
+        bank.remove_person(orl().names[6]);
+    }
+    while (scored < 50) std::this_thread::yield();
+    stop = true;
+    for (auto& r : readers) r.join();
+    EXPECT_EQ(bad, 0);
+    EXPECT_EQ(bank.scores(orl().faces[0][0]).names.size(), 6u);
+}
