@@ -110,4 +110,20 @@ JsonObject& JsonObject::raw(const std::string& key, const std::string& json) {
     return *this;
 }
 
+std::vector<ClassifierKind> parse_methods(const std::string& list) {
+    std::vector<ClassifierKind> kinds;
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) {
+            try {
+                kinds.push_back(classifier_kind_from_string(item));
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--methods: ") + e.what());
+            }
+        }
+    if (kinds.empty()) throw UsageError("--methods: expected a comma-separated list of ehmm,eigen,fisher,lbph");
+    return kinds;
+}
+
 }  // namespace facesocial::cli

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "facesocial/face_classifier.hpp"
+
 namespace facesocial::cli {
 
 /// A usage mistake on the command line (exit code 2).
@@ -61,6 +63,9 @@ private:
     std::string body_;
     bool first_ = true;
 };
+
+/// Parses --methods: a comma-separated list of ehmm, eigen, fisher, lbph.
+std::vector<ClassifierKind> parse_methods(const std::string& list);
 
 /// Formats a number for JSON (finite: shortest round-trip form; otherwise null).
 std::string number(double v);

@@ -53,15 +53,6 @@ SplitResult run_split(ClassifierKind kind, const std::vector<std::vector<cv::Mat
     return r;
 }
 
-std::vector<ClassifierKind> parse_methods(const std::string& list) {
-    std::vector<ClassifierKind> kinds;
-    std::stringstream ss(list);
-    std::string item;
-    while (std::getline(ss, item, ','))
-        if (!item.empty()) kinds.push_back(classifier_kind_from_string(item));
-    if (kinds.empty()) throw UsageError("--methods: expected a comma-separated list of ehmm,eigen,fisher,lbph");
-    return kinds;
-}
 
 }  // namespace
 

@@ -10,6 +10,12 @@ namespace facesocial::cli {
 int cmd_detect(const std::vector<std::string>& args);
 int cmd_eval(const std::vector<std::string>& args);
 int cmd_eval_orl(const std::vector<std::string>& args);
+int cmd_eval_identify(const std::vector<std::string>& args);
+int cmd_eval_unknown(const std::vector<std::string>& args);
+int cmd_enrol(const std::vector<std::string>& args);
+int cmd_train(const std::vector<std::string>& args);
+int cmd_forget(const std::vector<std::string>& args);
+int cmd_recognize(const std::vector<std::string>& args);
 
 /// The image files named by a command line: a file as is, a folder as its images.
 std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>& inputs);

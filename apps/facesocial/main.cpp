@@ -22,6 +22,21 @@ commands:
         detector recall / false positives on dlib_faces and one-face share on Caltech faces
   eval orl [--data DIR] [--methods ehmm,eigen,fisher,lbph] [--splits N] [--json]
         ORL protocol: canonical split and N seeded random 5/5 splits per method
+  eval identify --train DIR --test DIR [--methods LIST] [--detect] [--json]
+        accuracy, training time and ms per face for two folders of one sub-folder per person
+  eval unknown [--data DIR] [--methods LIST] [--json]
+        open set on ORL: 35 known / 5 unknown people in 8 rotations; false accepts of the
+        min-score, min-variance and min-margin rules at 95% known acceptance, equal-error rates
+  enrol --bank FILE --person NAME IMAGES|FOLDER [--detect] [--train] [--method KIND] [--mask|--no-mask]
+        add face images to a person's training set (creates the bank file if needed; --method
+        and --mask choose the classifier and the elliptical mask of a new bank)
+  train --bank FILE [--person NAME] [--json]
+        train everyone whose training set changed, or one person
+  forget --bank FILE --person NAME
+        remove a person's training set and model
+  recognize --bank FILE IMAGE|FOLDER [--detect] [--top K] [--min-score S] [--min-variance V]
+              [--min-margin M] [--json]
+        name the face (whole image, or every detected face) with the top K candidates
   version
         print the library version
 
@@ -44,6 +59,10 @@ int main(int argc, char** argv) {
     try {
         if (command == "detect") return cli::cmd_detect(args);
         if (command == "eval") return cli::cmd_eval(args);
+        if (command == "enrol" || command == "enroll") return cli::cmd_enrol(args);
+        if (command == "train") return cli::cmd_train(args);
+        if (command == "forget") return cli::cmd_forget(args);
+        if (command == "recognize" || command == "recognise") return cli::cmd_recognize(args);
         if (command == "version") {
             std::cout << "facesocial " << FACESOCIAL_VERSION_STRING << "\n";
             return 0;

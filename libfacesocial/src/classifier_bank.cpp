@@ -300,6 +300,8 @@ bool ClassifierBank::is_trained(const std::string& name) const {
     return p.trained_version == p.version;
 }
 
+std::vector<std::string> ClassifierBank::trained_people() const { return impl_->current()->names; }
+
 std::vector<std::string> ClassifierBank::stale() const {
     std::lock_guard lock(impl_->mutex);
     std::vector<std::string> out;
@@ -373,6 +375,7 @@ void write_params(std::ostream& out, const ClassifierBankParams& p) {
     put<double>(out, n.vertical_margin);
     put<double>(out, p.unknown.min_variance);
     put<double>(out, p.unknown.min_score);
+    put<double>(out, p.unknown.min_margin);
 }
 
 ClassifierBankParams read_params(std::istream& in) {
@@ -395,6 +398,7 @@ ClassifierBankParams read_params(std::istream& in) {
     n.vertical_margin = get<double>(in, kWhat);
     p.unknown.min_variance = get<double>(in, kWhat);
     p.unknown.min_score = get<double>(in, kWhat);
+    p.unknown.min_margin = get<double>(in, kWhat);
     try {
         p.validate();
     } catch (const std::invalid_argument& e) {

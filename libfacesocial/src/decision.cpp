@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -12,6 +13,7 @@ namespace facesocial {
 void UnknownRule::validate() const {
     if (!(min_variance >= 0))
         detail::fail("UnknownRule", "min_variance >= 0", std::to_string(min_variance));
+    if (!(min_margin >= 0)) detail::fail("UnknownRule", "min_margin >= 0", std::to_string(min_margin));
     if (std::isnan(min_score)) detail::fail("UnknownRule", "min_score a number or -infinity", "NaN");
 }
 
@@ -52,9 +54,11 @@ Decision decide(const std::vector<std::string>& names, const std::vector<double>
     d.variance = score_variance(scores);
     if (d.ranked.empty()) return d;
     d.score = d.ranked.front().score;
+    d.margin = d.ranked.size() > 1 ? d.score - d.ranked[1].score : std::numeric_limits<double>::infinity();
     const bool flat = rule.min_variance > 0 && d.variance < rule.min_variance;
     const bool weak = d.score < rule.min_score;
-    d.known = !flat && !weak;
+    const bool close = d.margin < rule.min_margin;
+    d.known = !flat && !weak && !close;
     if (d.known) d.name = d.ranked.front().name;
     return d;
 }

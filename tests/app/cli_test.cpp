@@ -56,3 +56,74 @@ TEST(Cli, UsageErrorsExitWithTwo) {
     EXPECT_EQ(run("detect x.jpg --bogus").code, 2);
     EXPECT_EQ(run("eval nothing").code, 2);
 }
+
+TEST(Cli, EnrolTrainRecognizeForgetRoundTrip) {
+    facesocial::test::TempDir dir;
+    const auto orl = facesocial::test::data() / "orl";
+    const std::string bank = (dir / "people.fsb").string();
+    for (const char* person : {"s1", "s2", "s3"}) {
+        std::string files;
+        for (int i = 1; i <= 5; ++i) files += " " + (orl / person / (std::to_string(i) + ".pgm")).string();
+        const CliRun r = run("enrol --bank " + bank + " --person " + person + files);
+        ASSERT_EQ(r.code, 0) << r.out;
+        EXPECT_NE(r.out.find("need training"), std::string::npos) << r.out;
+    }
+    const CliRun trained = run("train --bank " + bank + " --json");
+    ASSERT_EQ(trained.code, 0) << trained.out;
+    EXPECT_NE(trained.out.find("\"trained\":[\"s1\",\"s2\",\"s3\"]"), std::string::npos) << trained.out;
+
+    const CliRun rec = run("recognize --bank " + bank + " " + (orl / "s2" / "8.pgm").string() + " --top 2 --json");
+    ASSERT_EQ(rec.code, 0) << rec.out;
+    EXPECT_NE(rec.out.find("\"known\":true,\"name\":\"s2\""), std::string::npos) << rec.out;
+    EXPECT_NE(rec.out.find("\"candidates\":[{\"name\":\"s2\""), std::string::npos) << rec.out;
+    // A margin no one reaches makes every face unknown, but the candidates stay.
+    const CliRun strict = run("recognize --bank " + bank + " " + (orl / "s2" / "8.pgm").string() + " --min-margin 1000");
+    ASSERT_EQ(strict.code, 0) << strict.out;
+    EXPECT_NE(strict.out.find(": unknown"), std::string::npos) << strict.out;
+
+    ASSERT_EQ(run("forget --bank " + bank + " --person s2").code, 0);
+    const CliRun after = run("recognize --bank " + bank + " " + (orl / "s2" / "8.pgm").string() + " --json");
+    EXPECT_EQ(after.out.find("\"name\":\"s2\""), std::string::npos) << after.out;
+    EXPECT_EQ(run("forget --bank " + bank + " --person s2").code, 2);  // not enrolled any more
+}
+
+TEST(Cli, BankCommandsRejectDamagedBanksAndMissingArguments) {
+    facesocial::test::TempDir dir;
+    std::ofstream(dir / "bad.fsb") << "not a bank";
+    const auto face = facesocial::test::data() / "orl" / "s1" / "1.pgm";
+    const CliRun bad = run("recognize --bank " + (dir / "bad.fsb").string() + " " + face.string());
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.out.find("not a FaceSocial bank file"), std::string::npos) << bad.out;
+    // Enrolling into a damaged bank must not overwrite it.
+    EXPECT_EQ(run("enrol --bank " + (dir / "bad.fsb").string() + " --person x " + face.string()).code, 1);
+    std::ifstream in(dir / "bad.fsb");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "not a bank");
+    EXPECT_EQ(run("enrol --person x " + face.string()).code, 2);
+    EXPECT_EQ(run("enrol --bank b.fsb " + face.string()).code, 2);
+    EXPECT_EQ(run("train").code, 2);
+    EXPECT_EQ(run("recognize --bank " + (dir / "missing.fsb").string() + " " + face.string()).code, 1);
+}
+
+TEST(Cli, EvalIdentifyOnEssexFolders) {
+    const auto essex = facesocial::test::data() / "essex_faces94_subset";
+    const CliRun r = run("eval identify --train " + (essex / "train").string() + " --test " + (essex / "test").string() +
+                         " --methods ehmm --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"method\":\"ehmm\",\"accuracy\":1,\"faces\":68"), std::string::npos) << r.out;
+}
+
+TEST(Cli, EvalUnknownReportsEveryRuleAndTheMarginRuleSeparatesStrangersBest) {
+    const CliRun r = run("eval unknown --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string& j = r.out;
+    auto eer = [&](const std::string& rule) {
+        const auto at = j.find("\"" + rule + "\":{");
+        EXPECT_NE(at, std::string::npos) << rule;
+        const auto e = j.find("\"eer\":", at);
+        return std::stod(j.substr(e + 6));
+    };
+    EXPECT_NE(j.find("\"known_probes\":1400,\"unknown_probes\":400"), std::string::npos) << j;
+    EXPECT_LT(eer("min_margin"), eer("min_score"));
+    EXPECT_LT(eer("min_margin"), eer("min_variance"));
+    EXPECT_LT(eer("min_margin"), 0.15);
+}

@@ -77,11 +77,21 @@ TEST(Decision, RanksByScoreThenNameAndAppliesTheRule) {
     EXPECT_EQ(d.ranked.front().name, "bob");  // second guesses stay available
     rule.min_score = -2;
     EXPECT_EQ(decide(names, scores, rule).name, "bob");
+    EXPECT_EQ(decide(names, scores, rule).margin, 0.0);  // bob and carol tie
+    rule.min_margin = 0.1;
+    EXPECT_FALSE(decide(names, scores, rule).known);
+    UnknownRule margin_only;
+    margin_only.min_margin = 0.1;
+    EXPECT_TRUE(decide({"solo"}, {-5.0}, margin_only).known);  // one person: no runner-up to compare
+    EXPECT_FALSE(decide({"solo"}, {-5.0}, rule).known);        // but the variance test rejects
     EXPECT_FALSE(decide({}, {}, UnknownRule{}).known);
 
     EXPECT_THROW(rank_candidates(names, {1.0}), std::invalid_argument);
     EXPECT_THROW(rank_candidates({"a"}, {NAN}), std::invalid_argument);
     EXPECT_THROW(decide(names, scores, UnknownRule{-1.0}), std::invalid_argument);
+    UnknownRule negative_margin;
+    negative_margin.min_margin = -1;
+    EXPECT_THROW(negative_margin.validate(), std::invalid_argument);
 }
 
 TEST(ClassifierBank, RecognisesOrlPeopleAndRanksTheTruePersonFirst) {
@@ -156,12 +166,14 @@ TEST(ClassifierBank, SaveThenLoadGivesIdenticalScores) {
     bank.add_person("newcomer");  // enrolled, no faces yet
     UnknownRule rule;
     rule.min_variance = 0.25;
+    rule.min_margin = 0.5;
     bank.set_unknown_rule(rule);
     const std::string path = (dir / "bank.fsb").string();
     bank.save(path);
     const ClassifierBank loaded = ClassifierBank::load(path);
     EXPECT_EQ(loaded.people(), bank.people());
     EXPECT_EQ(loaded.unknown_rule().min_variance, 0.25);
+    EXPECT_EQ(loaded.unknown_rule().min_margin, 0.5);
     EXPECT_EQ(loaded.stale(), bank.stale());
     EXPECT_EQ(loaded.face_count(orl().names[3]), 5u);
     for (std::size_t p : {0u, 5u, 30u}) {

@@ -89,6 +89,8 @@ public:
     std::vector<std::string> train();
     /// True when the person's model reflects their current training set.
     bool is_trained(const std::string& name) const;
+    /// The people recognition covers (those with a model), in the order of scores().
+    std::vector<std::string> trained_people() const;
     /// People whose training set changed since their model was trained (or never trained).
     std::vector<std::string> stale() const;
 

@@ -1,7 +1,9 @@
 // From a score vector (one score per enrolled person) to ranked candidates and a hard decision,
 // with the paper's "unknown" rule (section III.C.3): a face is unknown when the score vector is
 // too flat (its variance is under a threshold: no person stands out) and/or the winning score is
-// under a minimum. Used on single-frame scores and on accumulated scores alike.
+// under a minimum. A third test, beyond the paper, looks at the margin between the winner and the
+// runner-up, which separates strangers far better on ORL (docs/BENCHMARKS.md, eval unknown).
+// Used on single-frame scores and on accumulated scores alike.
 #pragma once
 
 #include <limits>
@@ -18,8 +20,12 @@ struct UnknownRule {
     double min_variance = 0.0;
     /// Unknown when the best score is below this (-infinity = off).
     double min_score = -std::numeric_limits<double>::infinity();
+    /// Unknown when the winner beats the runner-up by less than this (0 = off). Never fires
+    /// with a single enrolled person.
+    double min_margin = 0.0;
 
-    /// Throws std::invalid_argument for a negative or NaN min_variance or a NaN min_score.
+    /// Throws std::invalid_argument for a negative or NaN min_variance or min_margin, or a NaN
+    /// min_score.
     void validate() const;
 };
 
@@ -35,6 +41,7 @@ struct Decision {
     std::string name;                ///< the winner when known, empty otherwise
     double score = 0;                ///< the best score (0 when nobody is enrolled)
     double variance = 0;             ///< population variance of the score vector
+    double margin = 0;               ///< best minus second-best score (+infinity for one person)
     std::vector<Candidate> ranked;   ///< everyone, best first (ties by name), for second guesses
 };
 
