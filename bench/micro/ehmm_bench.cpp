@@ -4,7 +4,9 @@
 #include <opencv2/core.hpp>
 
 #include "../../libfacesocial/src/ehmm_impl.hpp"
+#include "facesocial/classifier_bank.hpp"
 #include "facesocial/datasets.hpp"
+#include "facesocial/face_augment.hpp"
 #include "facesocial/face_classifier.hpp"
 #include "facesocial/face_normalizer.hpp"
 #include "facesocial/image_io.hpp"
@@ -48,6 +50,18 @@ void BM_Emissions(benchmark::State& state) {
 }
 BENCHMARK(BM_Emissions)->Unit(benchmark::kMicrosecond);
 
+/// Training's variant: also keeps the winning mixture of every state.
+void BM_EmissionsWithBestMixture(benchmark::State& state) {
+    const ModelAndFace x;
+    RowMatrixF E;
+    std::vector<int> best;
+    for (auto _ : state) {
+        x.model.impl().emissions(x.F, E, &best);
+        benchmark::DoNotOptimize(best.data());
+    }
+}
+BENCHMARK(BM_EmissionsWithBestMixture)->Unit(benchmark::kMicrosecond);
+
 void BM_Viterbi(benchmark::State& state) {
     const ModelAndFace x;
     RowMatrixF E;
@@ -80,6 +94,28 @@ void BM_Train40PeopleBank(benchmark::State& state) {
     for (auto _ : state) c->train(train);
 }
 BENCHMARK(BM_Train40PeopleBank)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The bank's path: per-person models scored in parallel over people (Arg = threads).
+void BM_BankScore40People(benchmark::State& state) {
+    ClassifierBankParams p;
+    p.normalizer = NormalizerParams::cropped();
+    p.classifier.num_threads = int(state.range(0));
+    ClassifierBank bank(p);
+    for (int i = 0; i < 40; ++i) bank.add_faces("s" + std::to_string(i + 1), first5(i));
+    bank.train();
+    for (auto _ : state) benchmark::DoNotOptimize(bank.scores(orl_faces()[3][7]));
+}
+BENCHMARK(BM_BankScore40People)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The paper's Fig. 4: training time of one person against the training-set size. The set is
+/// person s1's 10 real ORL images followed by small random variations of them (augment_faces).
+void BM_TrainOnePersonFromN(benchmark::State& state) {
+    const auto faces = augment_faces(orl_faces()[0], std::size_t(state.range(0)), AugmentParams{}, 7);
+    EhmmTrainingReport report;
+    for (auto _ : state) benchmark::DoNotOptimize(EmbeddedHmm::train(faces, EhmmParams{}, &report));
+    state.counters["iterations"] = report.iterations;
+}
+BENCHMARK(BM_TrainOnePersonFromN)->Arg(10)->Arg(30)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

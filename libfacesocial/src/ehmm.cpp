@@ -80,14 +80,17 @@ void EmbeddedHmm::Impl::build_emission_weights() {
     const int K = T * M;
     W.resize(2 * dim + 1, K);
     for (int k = 0; k < K; ++k) {
+        // Parameters are stored state-major (k = t*M + m); W's columns are mixture-major
+        // (m*T + t) so that the max over mixtures runs over contiguous slabs.
+        const int col = (k % M) * T + k / M;
         double c = std::log(std::max(weight(k), kMinWeight)) - 0.5 * dim * kLog2Pi;
         for (int j = 0; j < dim; ++j) {
             const double iv = 1.0 / var(k, j);
-            W(j, k) = float(-0.5 * iv);
-            W(dim + j, k) = float(mean(k, j) * iv);
+            W(j, col) = float(-0.5 * iv);
+            W(dim + j, col) = float(mean(k, j) * iv);
             c -= 0.5 * (std::log(var(k, j)) + double(mean(k, j)) * mean(k, j) * iv);
         }
-        W(2 * dim, k) = float(c);
+        W(2 * dim, col) = float(c);
     }
 }
 
@@ -107,18 +110,30 @@ void EmbeddedHmm::Impl::features(const Observations& obs, RowMatrixF& F) {
 
 void EmbeddedHmm::Impl::reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
                                         std::vector<int>* best_mixture) const {
-    E.resize(n, T);
-    if (best_mixture) best_mixture->assign(std::size_t(n) * T, 0);
+    // Locals and restrict pointers: stores through the outputs must not force reloads of the
+    // topology, so the inner loops vectorise (compare + blend over the states).
+    const int nT = T, nM = M;
+    E.resize(n, nT);
+    if (best_mixture) best_mixture->assign(std::size_t(n) * nT, 0);
     for (Eigen::Index i = 0; i < n; ++i) {
-        const float* g = G + i * stride;
-        float* e = E.row(i).data();
-        for (int t = 0; t < T; ++t) {
-            const float* gm = g + t * M;
-            int arg = 0;
-            for (int m = 1; m < M; ++m)
-                if (gm[m] > gm[arg]) arg = m;
-            e[t] = gm[arg];
-            if (best_mixture) (*best_mixture)[std::size_t(i) * T + t] = arg;
+        const float* __restrict g = G + i * stride;
+        float* __restrict e = E.row(i).data();
+        std::copy_n(g, nT, e);
+        if (best_mixture) {
+            int* __restrict arg = best_mixture->data() + std::size_t(i) * nT;
+            for (int m = 1; m < nM; ++m) {
+                const float* __restrict gm = g + m * nT;
+                for (int t = 0; t < nT; ++t) {
+                    const bool better = gm[t] > e[t];
+                    e[t] = better ? gm[t] : e[t];
+                    arg[t] = better ? m : arg[t];
+                }
+            }
+        } else {
+            for (int m = 1; m < nM; ++m) {
+                const float* __restrict gm = g + m * nT;
+                for (int t = 0; t < nT; ++t) e[t] = std::max(e[t], gm[t]);
+            }
         }
     }
 }

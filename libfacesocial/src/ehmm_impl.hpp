@@ -28,7 +28,7 @@ struct EmbeddedHmm::Impl {
 
     // Emission log-density of every Gaussian as one linear map of [x^2, x, 1]:
     // log(w N(x; mu, var)) = sum_j (-x_j^2 / (2 var_j) + x_j mu_j / var_j) + c.
-    Eigen::MatrixXf W;  // (2*dim + 1) x T*M
+    Eigen::MatrixXf W;  // (2*dim + 1) x T*M, column m*T + t (mixture-major)
 
     void set_topology(const EhmmParams& p);
     void build_emission_weights();
@@ -38,7 +38,8 @@ struct EmbeddedHmm::Impl {
     /// E(n, t) = max over mixtures of the Gaussian log-densities; `best_mixture` (optional)
     /// receives the arg max.
     void emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture = nullptr) const;
-    /// Emissions from precomputed Gaussian log-densities G (N x T*M, row stride `stride`).
+    /// Emissions from precomputed Gaussian log-densities G (N x T*M, mixture-major columns
+    /// m*T + t as in W, row stride `stride`).
     void reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
                          std::vector<int>* best_mixture) const;
     /// The scaled log-probability (Viterbi log-likelihood per observation) of a face whose

@@ -8,6 +8,7 @@
 #include "facesocial/detection_eval.hpp"
 #include "facesocial/ehmm.hpp"
 #include "facesocial/error.hpp"
+#include "facesocial/face_augment.hpp"
 #include "facesocial/face_classifier.hpp"
 #include "facesocial/face_detector.hpp"
 #include "facesocial/face_normalizer.hpp"
