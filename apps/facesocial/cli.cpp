@@ -93,14 +93,22 @@ JsonObject& JsonObject::add(const std::string& key, double value) { return raw(k
 
 JsonObject& JsonObject::add(const std::string& key, const std::vector<JsonObject>& values) {
     std::string s = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + values[i].str();
-    return raw(key, s + "]");
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (i) s += ',';
+        s += values[i].str();
+    }
+    s += ']';
+    return raw(key, s);
 }
 
 JsonObject& JsonObject::add(const std::string& key, const std::vector<double>& values) {
     std::string s = "[";
-    for (std::size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + number(values[i]);
-    return raw(key, s + "]");
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (i) s += ',';
+        s += number(values[i]);
+    }
+    s += ']';
+    return raw(key, s);
 }
 
 JsonObject& JsonObject::raw(const std::string& key, const std::string& json) {

@@ -94,8 +94,12 @@ int cmd_eval_orl(const std::vector<std::string>& argv) {
         std::vector<double> acc;
         double train_s = canonical.train_seconds, ms = canonical.ms_per_face;
         for (int s = 0; s < splits; ++s) {
+            // Split s depends on its seed alone: shuffle the identity order, not the previous split.
             std::mt19937 rng(1000 + s);
-            for (auto& o : order) std::shuffle(o.begin(), o.end(), rng);
+            for (auto& o : order) {
+                std::iota(o.begin(), o.end(), 0);
+                std::shuffle(o.begin(), o.end(), rng);
+            }
             make_split(order, train, test);
             const SplitResult r = run_split(kind, train, test);
             acc.push_back(r.accuracy);

@@ -354,6 +354,8 @@ namespace {
 
 constexpr char kMagic[16] = {'F', 'A', 'C', 'E', 'S', 'O', 'C', 'I', 'A', 'L', '-', 'B', 'A', 'N', 'K', '\n'};
 constexpr const char* kWhat = "bank";
+static_assert(ClassifierBank::kFormatVersion == EmbeddedHmm::kLayoutVersion,
+              "bank files hold models in the layout of their own version");
 constexpr uint64_t kMaxFaces = 1u << 20;
 
 using detail::get;
@@ -378,14 +380,14 @@ void write_params(std::ostream& out, const ClassifierBankParams& p) {
     put<double>(out, p.unknown.min_margin);
 }
 
-ClassifierBankParams read_params(std::istream& in) {
+ClassifierBankParams read_params(std::istream& in, uint32_t version) {
     ClassifierBankParams p;
     ClassifierParams& c = p.classifier;
     const int32_t kind = get<int32_t>(in, kWhat);
     if (kind < 0 || kind > int32_t(ClassifierKind::Lbph))
         throw ModelFormatError("<stream>", "bank with unknown classifier kind " + std::to_string(kind));
     c.kind = ClassifierKind(kind);
-    c.ehmm = read_ehmm_params(in);
+    c.ehmm = read_ehmm_params(in, version);
     for (int* v : {&c.eigen_components, &c.fisher_components, &c.lbph_radius, &c.lbph_neighbors, &c.lbph_grid, &c.num_threads})
         *v = get<int32_t>(in, kWhat);
     NormalizerParams& n = p.normalizer;
@@ -485,7 +487,7 @@ ClassifierBank ClassifierBank::load(const std::string& path) {
 
     try {
         std::istringstream body(data.substr(head, size));
-        ClassifierBank bank(read_params(body));
+        ClassifierBank bank(read_params(body, version));
         Impl& m = *bank.impl_;
         const cv::Size face_size = m.params.normalizer.output_size;
         const uint64_t count = get<uint64_t>(body, kWhat);
@@ -507,7 +509,7 @@ ClassifierBank ClassifierBank::load(const std::string& path) {
             }
             if (get<uint8_t>(body, kWhat)) {
                 if (m.joint_kind()) throw ModelFormatError("<stream>", "bank holds an EHMM for a joint classifier");
-                p.model = EmbeddedHmm::read(body);
+                p.model = EmbeddedHmm::read(body, version);
                 if (p.model.params().observations.face_size != face_size)
                     throw ModelFormatError("<stream>", "model of '" + p.name + "' is for another face size");
             }

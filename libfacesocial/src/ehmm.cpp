@@ -266,6 +266,19 @@ struct Stats {
     }
 };
 
+/// Mixture assignment by k-means inside every embedded state: adds each state's vectors to the
+/// statistics of its nearest cluster.
+void cluster_states(const std::vector<std::vector<const float*>>& per_state, int mixtures, int dim, Stats& st) {
+    for (std::size_t t = 0; t < per_state.size(); ++t) {
+        Eigen::MatrixXf X(per_state[t].size(), dim);
+        for (std::size_t i = 0; i < per_state[t].size(); ++i)
+            X.row(Eigen::Index(i)) = Eigen::Map<const Eigen::RowVectorXf>(per_state[t][i], dim);
+        const std::vector<int> label = kmeans(X, mixtures);
+        for (std::size_t i = 0; i < per_state[t].size(); ++i)
+            st.add(int(t) * mixtures + label[i], per_state[t][i], dim);
+    }
+}
+
 void add_transitions(const EmbeddedHmm::Impl& m, const EhmmSegmentation& seg, Stats& st) {
     const int R = seg.grid.height, C = seg.grid.width;
     for (int r = 0; r < R; ++r) {
@@ -394,13 +407,7 @@ EmbeddedHmm EmbeddedHmm::train(const std::vector<Observations>& obs, const EhmmP
                 per_state[m.first[segs[i].super_state[r]] + segs[i].state[b]].push_back(obs[i].vectors.ptr<float>(b));
             }
         Stats st(K, dim, m.T, m.S);
-        for (int t = 0; t < m.T; ++t) {
-            Eigen::MatrixXf X(per_state[t].size(), dim);
-            for (std::size_t i = 0; i < per_state[t].size(); ++i)
-                X.row(Eigen::Index(i)) = Eigen::Map<const Eigen::RowVectorXf>(per_state[t][i], dim);
-            const std::vector<int> label = kmeans(X, m.M);
-            for (std::size_t i = 0; i < per_state[t].size(); ++i) st.add(t * m.M + label[i], per_state[t][i], dim);
-        }
+        cluster_states(per_state, m.M, dim, st);
         for (const auto& s : segs) add_transitions(m, s, st);
         reestimate(m, st, floor);
     }
@@ -417,16 +424,22 @@ EmbeddedHmm EmbeddedHmm::train(const std::vector<Observations>& obs, const EhmmP
     for (int iter = 0; iter < params.max_iterations; ++iter) {
         Stats st(K, dim, m.T, m.S);
         double ll = 0;
+        const bool recluster = params.recluster_mixtures && iter == 1;
+        std::vector<std::vector<const float*>> per_state(recluster ? m.T : 0);
         for (std::size_t i = 0; i < obs.size(); ++i) {
             m.emissions(F[i], E, &best_mixture);
             EhmmSegmentation seg;
             ll += m.viterbi(E, grid, &seg);
             for (int b = 0; b < grid.area(); ++b) {
                 const int t = m.first[seg.super_state[b / grid.width]] + seg.state[b];
-                st.add(t * m.M + best_mixture[std::size_t(b) * m.T + t], obs[i].vectors.ptr<float>(b), dim);
+                if (recluster)
+                    per_state[t].push_back(obs[i].vectors.ptr<float>(b));
+                else
+                    st.add(t * m.M + best_mixture[std::size_t(b) * m.T + t], obs[i].vectors.ptr<float>(b), dim);
             }
             add_transitions(m, seg, st);
         }
+        if (recluster) cluster_states(per_state, m.M, dim, st);
         const double mean_ll = ll / (total_n);
         rep.mean_log_likelihood.push_back(mean_ll);
         rep.iterations = iter + 1;
@@ -593,9 +606,13 @@ void write_ehmm_params(std::ostream& out, const EhmmParams& p) {
     put<double>(out, p.tolerance);
     put<double>(out, p.variance_floor);
     put<double>(out, p.min_transition);
+    put<uint8_t>(out, p.recluster_mixtures ? 1 : 0);  // since layout 2
 }
 
-EhmmParams read_ehmm_params(std::istream& in) {
+EhmmParams read_ehmm_params(std::istream& in, uint32_t layout) {
+    if (layout < 1 || layout > EmbeddedHmm::kLayoutVersion)
+        throw ModelFormatError("<stream>", "embedded HMM of layout version " + std::to_string(layout) +
+                                               "; this library reads 1 to " + std::to_string(EmbeddedHmm::kLayoutVersion));
     EhmmParams p;
     p.observations.face_size.width = get<int32_t>(in);
     p.observations.face_size.height = get<int32_t>(in);
@@ -612,6 +629,7 @@ EhmmParams read_ehmm_params(std::istream& in) {
     p.tolerance = get<double>(in);
     p.variance_floor = get<double>(in);
     p.min_transition = get<double>(in);
+    if (layout >= 2) p.recluster_mixtures = get<uint8_t>(in) != 0;
     try {
         p.validate();
     } catch (const std::invalid_argument& e) {
@@ -637,8 +655,8 @@ void EmbeddedHmm::write(std::ostream& out) const {
     put_floats(out, m.super_log_next.data(), m.S);
 }
 
-EmbeddedHmm EmbeddedHmm::read(std::istream& in) {
-    const EhmmParams p = read_ehmm_params(in);
+EmbeddedHmm EmbeddedHmm::read(std::istream& in, uint32_t format_version) {
+    const EhmmParams p = read_ehmm_params(in, format_version);
     auto impl = std::make_shared<Impl>();
     Impl& m = *impl;
     m.set_topology(p);

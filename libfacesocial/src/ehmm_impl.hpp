@@ -51,7 +51,8 @@ struct EmbeddedHmm::Impl {
 
 /// The parameters as stored at the head of a model (and in bank files).
 void write_ehmm_params(std::ostream& out, const EhmmParams& p);
-/// Reads and validates them; ModelFormatError("<stream>", ...) when short or invalid.
-EhmmParams read_ehmm_params(std::istream& in);
+/// Reads and validates them as written in `layout` (EmbeddedHmm::kLayoutVersion or older);
+/// ModelFormatError("<stream>", ...) when short or invalid.
+EhmmParams read_ehmm_params(std::istream& in, uint32_t layout);
 
 }  // namespace facesocial

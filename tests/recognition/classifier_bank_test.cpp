@@ -244,6 +244,40 @@ TEST(ClassifierBank, DamagedFilesGiveClearErrorsAndFailedSavesKeepTheOldFile) {
     EXPECT_THROW(bank.save((dir / "no_such_folder" / "bank.fsb").string()), FileError);
 }
 
+TEST(ClassifierBank, ReadsFormatVersionOne) {
+    // Version 1 differs from version 2 only by the EhmmParams::recluster_mixtures byte after the
+    // EHMM parameters. A joint (Eigenfaces) bank stores those parameters once, at a fixed offset:
+    // kind (4), 6 observation ints (24), super-state count (4), 5 state counts (20), mixtures and
+    // iterations (8), three doubles (24).
+    test::TempDir dir;
+    const ClassifierBank bank = make_bank(first(3), ClassifierKind::Eigenfaces);
+    const std::string path = (dir / "v2.fsb").string();
+    bank.save(path);
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t head = 16 + 4 + 8, at = head + 84;
+    ASSERT_EQ(bytes[16], char(2));
+    ASSERT_EQ(bytes[at], char(0));
+    std::string payload = bytes.substr(head, bytes.size() - head - 8);
+    payload.erase(84, 1);
+    uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
+    for (unsigned char c : payload) hash = (hash ^ c) * 0x100000001b3ull;
+    std::string v1 = bytes.substr(0, 16);
+    const uint32_t version = 1;
+    const uint64_t size = payload.size();
+    v1.append(reinterpret_cast<const char*>(&version), 4).append(reinterpret_cast<const char*>(&size), 8);
+    v1 += payload;
+    v1.append(reinterpret_cast<const char*>(&hash), 8);
+    std::ofstream(dir / "v1.fsb", std::ios::binary) << v1;
+    const ClassifierBank old = ClassifierBank::load((dir / "v1.fsb").string());
+    EXPECT_FALSE(old.params().classifier.ehmm.recluster_mixtures);
+    const cv::Mat probe = orl().faces[1][8];
+    EXPECT_EQ(old.scores(probe).scores, bank.scores(probe).scores);
+}
+
 TEST(ClassifierBank, BadInputsGiveClearErrors) {
     ClassifierBank bank(cropped_params());
     EXPECT_THROW(bank.add_person(""), std::invalid_argument);

@@ -39,6 +39,7 @@ std::vector<cv::Mat> orl_faces(int person, int from, int to) {
 
 TEST(Observations, GridAndDctOfAConstantImage) {
     ObservationParams p;
+    p.drop_dc = false;
     EXPECT_EQ(p.grid(), cv::Size(21, 26));
     const Observations o = extract_observations(cv::Mat(112, 92, CV_32F, cv::Scalar(2.0f)), p);
     ASSERT_EQ(o.vectors.rows, 21 * 26);
@@ -54,6 +55,7 @@ TEST(Observations, MatchesOpencvDctOfOneBlock) {
     const cv::Mat face = load_image(test::data() / "orl" / "s5" / "3.pgm", ImageColor::Grey);
     ObservationParams p;
     p.coefficients = 4;
+    p.drop_dc = false;
     const Observations o = extract_observations(face, p);
     const int r = 7, c = 9;  // block (row 7, column 9)
     cv::Mat block;
@@ -76,7 +78,8 @@ TEST(Observations, BadInputsGiveClearErrors) {
 }
 
 TEST(Ehmm, TrainingRecoversAModelFromItsOwnSamples) {
-    const EhmmParams p = small_params();
+    EhmmParams p = small_params();
+    p.recluster_mixtures = true;
     std::mt19937 rng(7);
     const EmbeddedHmm truth = EmbeddedHmm::random(p, rng);
     const EmbeddedHmm other = EmbeddedHmm::random(p, rng);
@@ -142,14 +145,19 @@ TEST(Ehmm, RecognisesOrlPeopleFromTheirOwnModels) {
 
 TEST(Ehmm, WriteReadGivesIdenticalScores) {
     const auto faces = orl_faces(2, 1, 6);
-    const EmbeddedHmm m = EmbeddedHmm::train(std::vector<cv::Mat>(faces.begin(), faces.begin() + 5));
+    EhmmParams p;
+    p.recluster_mixtures = true;
+    const EmbeddedHmm m = EmbeddedHmm::train(std::vector<cv::Mat>(faces.begin(), faces.begin() + 5), p);
     std::stringstream ss;
     m.write(ss);
     const EmbeddedHmm back = EmbeddedHmm::read(ss);
     EXPECT_EQ(m.score(faces[5]), back.score(faces[5]));
+    EXPECT_TRUE(back.params().recluster_mixtures);
     std::string bytes = ss.str();
     std::stringstream truncated(bytes.substr(0, bytes.size() / 2));
     EXPECT_THROW(EmbeddedHmm::read(truncated), ModelFormatError);
+    std::stringstream future(bytes);
+    EXPECT_THROW(EmbeddedHmm::read(future, EmbeddedHmm::kLayoutVersion + 1), ModelFormatError);
 }
 
 TEST(Ehmm, BadInputsAndParamsGiveClearErrors) {

@@ -116,8 +116,9 @@ public:
     /// is truncated, corrupt (checksum), foreign, or of a newer format version.
     static ClassifierBank load(const std::string& path);
 
-    /// Format version written by save().
-    static constexpr uint32_t kFormatVersion = 1;
+    /// Format version written by save(); load() reads every version up to it.
+    /// 1: first layout. 2: EhmmParams::recluster_mixtures stored with the EHMM parameters.
+    static constexpr uint32_t kFormatVersion = 2;
 
 private:
     struct Impl;

@@ -12,7 +12,9 @@ struct ObservationParams {
     int block_size = 12;          ///< side of the square blocks, pixels
     int block_step = 4;           ///< distance between neighbouring blocks (overlap = size - step)
     int coefficients = 3;         ///< the coefficients x coefficients lowest DCT frequencies are kept
-    bool drop_dc = false;         ///< leave out the DC coefficient (mean brightness of the block)
+    /// Leave out the DC coefficient (mean brightness of the block): on ORL this lifts the
+    /// mean accuracy over random splits from 97.5% to 98.4% (docs/BENCHMARKS.md).
+    bool drop_dc = true;
 
     /// Throws std::invalid_argument naming the first invalid field.
     void validate() const;
