@@ -20,3 +20,14 @@ message(STATUS "consumer said: ${out}")
 if(NOT rc EQUAL 0 OR NOT out MATCHES "facesocial [0-9]+\\.[0-9]+\\.[0-9]+ ok")
   message(FATAL_ERROR "consumer failed: ${rc} ${out}")
 endif()
+
+# The Python package installed by the same `cmake --install` imports from the prefix.
+if(PYTHON_EXECUTABLE AND PYTHON_INSTALL_DIR)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_INSTALL_DIR}
+                  ${PYTHON_EXECUTABLE} -c "import facesocial; print('python', facesocial.__version__, facesocial.EhmmParams().mixtures)"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message(STATUS "python said: ${out}")
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "python [0-9]+\\.[0-9]+\\.[0-9]+ 3")
+    message(FATAL_ERROR "importing the installed Python package failed: ${rc} ${out} ${err}")
+  endif()
+endif()
