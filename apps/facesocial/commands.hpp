@@ -16,6 +16,10 @@ int cmd_enrol(const std::vector<std::string>& args);
 int cmd_train(const std::vector<std::string>& args);
 int cmd_forget(const std::vector<std::string>& args);
 int cmd_recognize(const std::vector<std::string>& args);
+int cmd_watch(const std::vector<std::string>& args);
+int cmd_eval_window(const std::vector<std::string>& args);
+int cmd_eval_threshold(const std::vector<std::string>& args);
+int cmd_eval_throughput(const std::vector<std::string>& args);
 
 /// The image files named by a command line: a file as is, a folder as its images.
 std::vector<std::filesystem::path> expand_inputs(const std::vector<std::string>& inputs);

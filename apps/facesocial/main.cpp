@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
@@ -27,6 +28,17 @@ commands:
   eval unknown [--data DIR] [--methods LIST] [--json]
         open set on ORL: 35 known / 5 unknown people in 8 rotations; false accepts of the
         min-score, min-variance and min-margin rules at 95% known acceptance, equal-error rates
+  eval window [--data DIR] [--enrol K] [--out DIR] [--json]
+        accuracy against the evidence window (1-50 frames; moving average, decay, vote) on
+        Essex talking sequences and ORL sequences; writes window.csv / window.png
+  eval threshold [--data DIR] [--window N] [--out DIR] [--json]
+        accuracy and false positives against the unknown thresholds, per frame and accumulated,
+        with held-out ORL people and Essex's unlabelled faces as strangers; CSV + PNG curves
+  eval throughput [--data DIR] [--frames N] [--profile] [--json]
+        frames and faces per second of the whole pipeline with 40 people enrolled
+  watch --bank FILE SOURCE [--window N] [--mode average|decay|vote] [--out video.mp4]
+        [--events events.jsonl] [--profile] [--max-frames N] [--json]
+        run the live pipeline on a camera index, video file, stream URL or frame folder
   enrol --bank FILE --person NAME IMAGES|FOLDER [--detect] [--train] [--method KIND] [--mask|--no-mask]
         add face images to a person's training set (creates the bank file if needed; --method
         and --mask choose the classifier and the elliptical mask of a new bank)
@@ -48,6 +60,9 @@ Exit codes: 0 success, 1 file or data error, 2 usage error or invalid input.
 
 int main(int argc, char** argv) {
     using namespace facesocial;
+    // Errors reach the user as exceptions with their own message; OpenCV's backend probing
+    // (GStreamer, V4L2) would otherwise print several lines for every missing camera or file.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     cv::setNumThreads(1);  // the library does its own parallelism (TBB); keep OpenCV's out of the way
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
@@ -63,6 +78,7 @@ int main(int argc, char** argv) {
         if (command == "train") return cli::cmd_train(args);
         if (command == "forget") return cli::cmd_forget(args);
         if (command == "recognize" || command == "recognise") return cli::cmd_recognize(args);
+        if (command == "watch") return cli::cmd_watch(args);
         if (command == "version") {
             std::cout << "facesocial " << FACESOCIAL_VERSION_STRING << "\n";
             return 0;

@@ -77,12 +77,16 @@ public:
         }
         if (!ok || img.empty()) {
             ended_ = true;
+            frame.image.release();
+            frame.index = next_;
+            frame.timestamp = !live_ && fps_ > 0 ? double(next_) / fps_
+                                                 : std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
             if (live_) {
                 frame.message = description_ + " stopped delivering frames";
                 return FrameStatus::Lost;
             }
-            if (count_ > 0 && next_ < count_)
-                frame.message = "stream ended after " + std::to_string(next_) + " of " + std::to_string(count_) + " frames";
+            frame.message = "end of " + description_ + " after " + std::to_string(next_) + " frames";
+            if (count_ > 0 && next_ < count_) frame.message += " (the file announced " + std::to_string(count_) + ")";
             return FrameStatus::End;
         }
         frame.image = img;
@@ -119,7 +123,13 @@ public:
         if (files_.empty()) throw FileError(folder, "folder holds no frame images");
     }
     FrameStatus read(Frame& frame) override {
-        if (next_ >= files_.size()) return FrameStatus::End;
+        if (next_ >= files_.size()) {
+            frame.image.release();
+            frame.index = static_cast<long long>(files_.size());
+            frame.timestamp = double(files_.size()) / fps();
+            frame.message = "end of " + description();
+            return FrameStatus::End;
+        }
         const std::size_t i = next_++;
         frame.index = static_cast<long long>(i);
         frame.timestamp = double(i) / fps();

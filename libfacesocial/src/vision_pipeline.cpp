@@ -134,6 +134,7 @@ PipelineResult VisionPipeline::process(const Frame& frame) {
     r.frame = frame.index;
     r.timestamp = frame.timestamp;
     r.status = FrameStatus::Ok;
+    r.image = frame.image;
 
     const FrontEndResult fe = s.front_end->process(frame.image);
     r.front_end_ms = ms_since(t0);

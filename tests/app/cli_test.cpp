@@ -1,10 +1,14 @@
 // Runs the facesocial command-line tool as a user would.
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
 
+#include <sstream>
+
 #include <gtest/gtest.h>
+#include <opencv2/videoio.hpp>
 
 #include "support/test_data.hpp"
 
@@ -126,4 +130,94 @@ TEST(Cli, EvalUnknownReportsEveryRuleAndTheMarginRuleSeparatesStrangersBest) {
     EXPECT_LT(eer("min_margin"), eer("min_score"));
     EXPECT_LT(eer("min_margin"), eer("min_variance"));
     EXPECT_LT(eer("min_margin"), 0.15);
+}
+
+namespace {
+
+/// The number after "key": in a JSON text, from position `from`.
+double json_number(const std::string& j, const std::string& key, std::size_t from = 0) {
+    const auto at = j.find("\"" + key + "\":", from);
+    if (at == std::string::npos) {
+        ADD_FAILURE() << key << " not in " << j;
+        return NAN;
+    }
+    return std::stod(j.substr(at + key.size() + 3));
+}
+
+}  // namespace
+
+TEST(Cli, WatchWritesAnAnnotatedVideoAndTrackEvents) {
+    facesocial::test::TempDir dir;
+    const auto orl = facesocial::test::data() / "orl";
+    const std::string bank = (dir / "bank.fsb").string();
+    for (const char* p : {"s1", "s2"}) ASSERT_EQ(run("enrol --bank " + bank + " --person " + p + " " + (orl / p).string()).code, 0);
+    ASSERT_EQ(run("train --bank " + bank).code, 0);
+    const auto clip = facesocial::test::data() / "video_hamilton" / "short_hamilton_clip.mp4";
+    const CliRun r = run("watch --bank " + bank + " " + clip.string() + " --window 10 --out " + (dir / "out.mp4").string() +
+                         " --events " + (dir / "events.jsonl").string() + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(json_number(r.out, "frames"), 275);
+    EXPECT_GE(json_number(r.out, "tracks"), 2);
+    cv::VideoCapture video((dir / "out.mp4").string());
+    ASSERT_TRUE(video.isOpened());
+    EXPECT_EQ(int(video.get(cv::CAP_PROP_FRAME_COUNT)), 275);
+    std::ifstream events(dir / "events.jsonl");
+    std::string line, last;
+    int started = 0, lost = 0;
+    while (std::getline(events, line)) {
+        EXPECT_EQ(line.front(), '{');
+        EXPECT_EQ(line.back(), '}');
+        started += line.find("\"event\":\"track_started\"") != std::string::npos;
+        lost += line.find("\"event\":\"track_lost\"") != std::string::npos;
+        last = line;
+    }
+    EXPECT_GE(started, 2);
+    EXPECT_EQ(started, lost);
+    EXPECT_NE(last.find("\"event\":\"stream_ended\",\"frame\":275"), std::string::npos) << last;
+
+    // A missing camera and a file that is no video: clear errors, exit code 1.
+    const CliRun camera = run("watch --bank " + bank + " 7");
+    EXPECT_EQ(camera.code, 1);
+    EXPECT_NE(camera.out.find("camera 7"), std::string::npos) << camera.out;
+    const CliRun garbage = run("watch --bank " + bank + " " + (dir / "events.jsonl").string());
+    EXPECT_EQ(garbage.code, 1);
+    EXPECT_NE(garbage.out.find("not a video"), std::string::npos) << garbage.out;
+    EXPECT_EQ(run("watch " + clip.string()).code, 2);
+}
+
+TEST(Cli, EvalWindowShowsAccumulationBeatingSingleFrames) {
+    facesocial::test::TempDir dir;
+    const CliRun r = run("eval window --out " + dir.path().string() + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    // windows: 1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 25 (index 11), ...
+    auto curve = [&](const std::string& set) {
+        const auto at = r.out.find("\"set\":\"" + set + "\",\"mode\":\"average\",\"accuracy\":[");
+        EXPECT_NE(at, std::string::npos) << r.out;
+        std::vector<double> v;
+        std::stringstream ss(r.out.substr(r.out.find('[', at) + 1));
+        for (double x; ss >> x;) {
+            v.push_back(x);
+            if (ss.peek() == ']') break;
+            ss.ignore();
+        }
+        return v;
+    };
+    for (const char* set : {"essex", "orl"}) {
+        const auto acc = curve(set);
+        ASSERT_GE(acc.size(), 12u) << set;
+        EXPECT_GT(acc[11], acc[0] + 0.04) << set;
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir / "window.csv"));
+    EXPECT_GT(std::filesystem::file_size(dir / "window.png"), 5000u);
+}
+
+TEST(Cli, EvalThresholdAccumulationLowersFalsePositives) {
+    facesocial::test::TempDir dir;
+    const CliRun r = run("eval threshold --out " + dir.path().string() + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const auto at = r.out.find("\"set\":\"orl\",\"rule\":\"min_margin\"");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_LT(json_number(r.out, "false_positive_accumulated", at), json_number(r.out, "false_positive_frame", at));
+    EXPECT_LT(json_number(r.out, "eer_accumulated", at), json_number(r.out, "eer_frame", at));
+    EXPECT_TRUE(std::filesystem::exists(dir / "threshold_orl_min_margin.png"));
 }

@@ -83,6 +83,7 @@ struct PipelineResult {
     long long frame = -1;
     double timestamp = 0;
     FrameStatus status = FrameStatus::Ok;
+    cv::Mat image;                     ///< the frame (shares its pixels; empty for a status)
     std::vector<TrackReport> tracks;   ///< live tracks, by id
     std::vector<PipelineEvent> events;
     int faces_detected = 0;            ///< faces that passed the front end
