@@ -54,12 +54,8 @@ BENCHMARK(BM_FrontalProfileDetect640x480)->Unit(benchmark::kMillisecond);
 
 void BM_FrontalProfileDetectFast640x480(benchmark::State& state) {
     cv::setNumThreads(1);
-    CascadeDetectorParams profile = profile_cascade_params();
-    profile.cascade_file = "lbpcascade_profileface.xml";
-    profile.min_face_size = 32;
-    profile.max_working_width = 320;
     auto d = FaceDetector::combine({FaceDetector::create(CascadeDetectorParams::fast_frontal()),
-                                    FaceDetector::create(profile)});
+                                    FaceDetector::create(CascadeDetectorParams::fast_profile())});
     run_detector(state, *d);
 }
 BENCHMARK(BM_FrontalProfileDetectFast640x480)->Unit(benchmark::kMillisecond);

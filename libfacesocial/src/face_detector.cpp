@@ -190,6 +190,14 @@ CascadeDetectorParams CascadeDetectorParams::fast_frontal() {
     return p;
 }
 
+CascadeDetectorParams CascadeDetectorParams::fast_profile() {
+    CascadeDetectorParams p = profile_cascade_params();
+    p.cascade_file = "lbpcascade_profileface.xml";
+    p.min_face_size = 32;
+    p.max_working_width = 320;
+    return p;
+}
+
 std::unique_ptr<FaceDetector> FaceDetector::create(const CascadeDetectorParams& params) {
     return std::make_unique<CascadeDetector>(params);
 }

@@ -34,6 +34,7 @@ std::string to_string(PipelineEventKind kind) {
 FrontEndParams PipelineParams::default_front_end() {
     FrontEndParams p;
     p.frontal = CascadeDetectorParams::fast_frontal();
+    p.profile = CascadeDetectorParams::fast_profile();
     p.use_profile = false;
     p.use_skin_filter = true;
     p.normalize = true;

@@ -19,10 +19,3 @@ def data() -> pathlib.Path:
 @pytest.fixture(scope="session")
 def orl(data) -> fs.FaceSet:
     return fs.load_cropped_faces(data / "orl")
-
-
-def cropped_bank(kind=None) -> fs.ClassifierBank:
-    params = fs.ClassifierBankParams(normalizer=fs.NormalizerParams.cropped())
-    if kind is not None:
-        params.classifier.kind = kind
-    return fs.ClassifierBank(params)

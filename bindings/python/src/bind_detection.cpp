@@ -61,6 +61,8 @@ void bind_detection(py::module_& m) {
         .done()
         .def_static("fast_frontal", &CascadeDetectorParams::fast_frontal,
                     "Preset for live 640x480 video on one core (LBP cascade, 320 px working width).")
+        .def_static("fast_profile", &CascadeDetectorParams::fast_profile,
+                    "The same for the profile model (LBP profile cascade, 320 px working width).")
         .def_static("profile", &profile_cascade_params, "Default params of a profile detector.");
 
     py::class_<FaceDetector, std::shared_ptr<FaceDetector>>(m, "FaceDetector",

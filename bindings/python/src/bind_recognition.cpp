@@ -165,7 +165,7 @@ void bind_recognition(py::module_& m) {
         .def("__len__", [](const BankScores& s) { return s.names.size(); })
         .def("__repr__", [](const BankScores& s) { return "BankScores(" + std::to_string(s.names.size()) + " people)"; });
 
-    py::class_<ClassifierBank>(m, "ClassifierBank",
+    py::class_<ClassifierBank, std::shared_ptr<ClassifierBank>>(m, "ClassifierBank",
                                "Per-person training sets and classifiers; scoring, ranking, the unknown rule, "
                                "one checksummed file. Every method may be called from several threads.")
         .def(py::init<const ClassifierBankParams&>(), py::arg("params") = ClassifierBankParams{})

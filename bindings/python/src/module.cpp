@@ -11,4 +11,5 @@ PYBIND11_MODULE(_facesocial, m) {
     bind_preprocess(m);
     bind_io(m);
     bind_recognition(m);
+    bind_video(m);
 }

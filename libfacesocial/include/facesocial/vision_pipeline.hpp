@@ -20,9 +20,9 @@ namespace facesocial {
 
 /// Everything that shapes the pipeline; may be changed between frames.
 struct PipelineParams {
-    /// Detection, skin filter and normalisation. Defaults: the fast frontal preset
-    /// (CascadeDetectorParams::fast_frontal(), made for live 640x480 video), no profile, skin
-    /// filter on. The normaliser is always the bank's own (its params are replaced).
+    /// Detection, skin filter and normalisation. Defaults: the fast frontal and profile presets
+    /// (CascadeDetectorParams::fast_frontal() / fast_profile(), made for live 640x480 video),
+    /// profile off, skin filter on. The normaliser is always the bank's own (its params are replaced).
     FrontEndParams front_end = default_front_end();
     TrackerParams tracker;           ///< association of faces across frames
     AccumulatorParams accumulator;   ///< evidence per track (paper: 25-frame moving average)
