@@ -344,7 +344,7 @@ int cmd_eval_window(const std::vector<std::string>& argv) {
     }
 
     Chart chart;
-    chart.title = "Accuracy against the evidence window (enrolled from " + std::to_string(enrol) + " image(s) per person)";
+    chart.title = "Accuracy vs evidence window (" + std::to_string(enrol) + " enrolment image(s) per person)";
     chart.x_label = "window (frames)";
     chart.y_label = "accuracy";
     chart.y_min = 0.5;

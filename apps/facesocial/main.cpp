@@ -28,7 +28,7 @@ commands:
   eval unknown [--data DIR] [--methods LIST] [--json]
         open set on ORL: 35 known / 5 unknown people in 8 rotations; false accepts of the
         min-score, min-variance and min-margin rules at 95% known acceptance, equal-error rates
-  eval window [--data DIR] [--enrol K] [--out DIR] [--json]
+  eval window [--data DIR] [--enrol K] [--far PIXELS] [--out DIR] [--json]
         accuracy against the evidence window (1-50 frames; moving average, decay, vote) on
         Essex talking sequences and ORL sequences; writes window.csv / window.png
   eval threshold [--data DIR] [--window N] [--out DIR] [--json]

@@ -39,7 +39,7 @@ std::string tick_label(double v) {
 }  // namespace
 
 void write_png(const std::filesystem::path& path, const Chart& chart) {
-    const int W = 800, H = 500, left = 80, right = 200, top = 50, bottom = 60;
+    const int W = 900, H = 520, left = 80, right = 240, top = 70, bottom = 60;
     cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
     const int pw = W - left - right, ph = H - top - bottom;
     double x_min = chart.x.empty() ? 0 : chart.x.front(), x_max = chart.x.empty() ? 1 : chart.x.back();
@@ -62,9 +62,9 @@ void write_png(const std::filesystem::path& path, const Chart& chart) {
                     cv::LINE_AA);
     }
     cv::rectangle(img, {left, top}, {left + pw, top + ph}, black, 1);
-    cv::putText(img, chart.title, {left, 30}, font, 0.6, black, 1, cv::LINE_AA);
+    cv::putText(img, chart.title, {left, 28}, font, 0.6, black, 1, cv::LINE_AA);
     cv::putText(img, chart.x_label, {left + pw / 2 - 60, H - 15}, font, 0.5, black, 1, cv::LINE_AA);
-    cv::putText(img, chart.y_label, {8, top - 12}, font, 0.45, black, 1, cv::LINE_AA);
+    cv::putText(img, chart.y_label, {8, top - 14}, font, 0.45, black, 1, cv::LINE_AA);
     const std::vector<cv::Scalar> colours{{200, 80, 30}, {40, 40, 220}, {40, 160, 40}, {160, 40, 160},
                                           {30, 160, 220}, {120, 120, 120}, {0, 0, 0}, {200, 160, 0}};
     for (std::size_t k = 0; k < chart.series.size(); ++k) {

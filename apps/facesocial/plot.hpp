@@ -22,7 +22,7 @@ struct Chart {
 
 /// Writes x and every series as columns ("x_label,label1,label2,...").
 void write_csv(const std::filesystem::path& path, const Chart& chart);
-/// Draws the chart (800x500, axes, ticks, legend) and writes it as PNG.
+/// Draws the chart (900x520, axes, ticks, legend) and writes it as PNG.
 void write_png(const std::filesystem::path& path, const Chart& chart);
 
 }  // namespace facesocial::cli
