@@ -10,6 +10,7 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev googletest
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-matplotlib jupyter-nbconvert python3-nbformat python3-ipykernel
+  nlohmann-json3-dev
 )
 
 missing=()

@@ -17,6 +17,8 @@ int cmd_train(const std::vector<std::string>& args);
 int cmd_forget(const std::vector<std::string>& args);
 int cmd_recognize(const std::vector<std::string>& args);
 int cmd_watch(const std::vector<std::string>& args);
+int cmd_tag(const std::vector<std::string>& args);
+int cmd_eval_tagging(const std::vector<std::string>& args);
 int cmd_eval_window(const std::vector<std::string>& args);
 int cmd_eval_threshold(const std::vector<std::string>& args);
 int cmd_eval_throughput(const std::vector<std::string>& args);

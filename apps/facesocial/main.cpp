@@ -39,6 +39,13 @@ commands:
   watch --bank FILE SOURCE [--window N] [--mode average|decay|vote] [--out video.mp4]
         [--events events.jsonl] [--profile] [--max-frames N] [--json]
         run the live pipeline on a camera index, video file, stream URL or frame folder
+  tag --bank FILE PHOTO [--tags tags.json] [--graph graph.json] [--out annotated.jpg] [--enrol]
+      [--bonus B] [--no-profile] [--json]
+        tags -> faces (nearest face; a profile refuses the tag), --enrol adds them as training
+        samples; untagged faces -> names without and with the friend prior
+  eval tagging [--data DIR] [--photos N] [--seed S] [--enrol K] [--json]
+        group-photo tagging with / without the friend prior (and a shuffled graph), friendship
+        suggestions, and the tag-to-face step on dlib_faces
   enrol --bank FILE --person NAME IMAGES|FOLDER [--detect] [--train] [--method KIND] [--mask|--no-mask]
         add face images to a person's training set (creates the bank file if needed; --method
         and --mask choose the classifier and the elliptical mask of a new bank)
@@ -79,6 +86,7 @@ int main(int argc, char** argv) {
         if (command == "forget") return cli::cmd_forget(args);
         if (command == "recognize" || command == "recognise") return cli::cmd_recognize(args);
         if (command == "watch") return cli::cmd_watch(args);
+        if (command == "tag") return cli::cmd_tag(args);
         if (command == "version") {
             std::cout << "facesocial " << FACESOCIAL_VERSION_STRING << "\n";
             return 0;

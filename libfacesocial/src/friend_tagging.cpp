@@ -76,6 +76,33 @@ std::vector<FaceTag> tag_faces(const std::vector<BankScores>& faces, const Socia
     return out;
 }
 
+double friend_lift(const std::vector<std::vector<std::string>>& photos, const SocialGraph& graph) {
+    std::set<std::string> everyone;
+    std::set<std::pair<std::string, std::string>> together;
+    for (const auto& photo : photos) {
+        const std::set<std::string> people(photo.begin(), photo.end());
+        for (auto a = people.begin(); a != people.end(); ++a) {
+            if (a->empty()) continue;
+            everyone.insert(*a);
+            for (auto b = std::next(a); b != people.end(); ++b)
+                if (!b->empty()) together.insert({*a, *b});
+        }
+    }
+    if (together.empty()) return 0;
+    double friends_together = 0, friends_all = 0, pairs_all = 0;
+    for (const auto& [a, b] : together) friends_together += graph.are_friends(a, b);
+    for (auto a = everyone.begin(); a != everyone.end(); ++a)
+        for (auto b = std::next(a); b != everyone.end(); ++b) friends_all += graph.are_friends(*a, *b), ++pairs_all;
+    if (friends_all == 0) return 1;
+    return (friends_together / double(together.size())) / (friends_all / pairs_all);
+}
+
+double calibrated_friend_bonus(const std::vector<std::vector<std::string>>& photos, const SocialGraph& graph, double scale) {
+    if (!(scale >= 0)) throw std::invalid_argument("calibrated_friend_bonus: expected scale >= 0, got " + std::to_string(scale));
+    const double lift = friend_lift(photos, graph);
+    return lift > 1 ? scale * std::log(lift) : 0.0;
+}
+
 std::vector<FriendSuggestion> suggest_friendships(const std::vector<std::vector<std::string>>& photos,
                                                   const SocialGraph* graph, int min_photos) {
     if (min_photos < 1)

@@ -221,3 +221,57 @@ TEST(Cli, EvalThresholdAccumulationLowersFalsePositives) {
     EXPECT_LT(json_number(r.out, "eer_accumulated", at), json_number(r.out, "eer_frame", at));
     EXPECT_TRUE(std::filesystem::exists(dir / "threshold_orl_min_margin.png"));
 }
+
+TEST(Cli, TagResolvesTagsEnrolsThemAndNamesTheOtherFaces) {
+    facesocial::test::TempDir dir;
+    const auto data = facesocial::test::data();
+    const std::string bank = (dir / "bank.fsb").string();
+    for (const char* p : {"s1", "s2", "s3"})
+        ASSERT_EQ(run("enrol --bank " + bank + " --person " + p + " " + (data / "orl" / p).string()).code, 0);
+    ASSERT_EQ(run("train --bank " + bank).code, 0);
+    const std::string photo = (data / "dlib_faces" / "2008_002470.jpg").string();
+    const CliRun faces = run("detect " + photo + " --json");
+    ASSERT_EQ(faces.code, 0) << faces.out;
+    // Tag the first detected face at its centre.
+    const auto box = faces.out.find("\"box\"");
+    const double x = json_number(faces.out, "x", box), y = json_number(faces.out, "y", box), w = json_number(faces.out, "w", box),
+                 h = json_number(faces.out, "h", box);
+    std::ofstream(dir / "tags.json") << "[{\"person\": \"s2\", \"x\": " << x + w / 2 << ", \"y\": " << y + h / 2 << "}]";
+    std::ofstream(dir / "graph.json") << "{\"friendships\": [[\"s1\", \"s2\"], [\"s2\", \"s3\"]]}";
+    const CliRun r = run("tag --bank " + bank + " " + photo + " --tags " + (dir / "tags.json").string() + " --graph " +
+                         (dir / "graph.json").string() + " --enrol --out " + (dir / "tagged.jpg").string() + " --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"person\":\"s2\",\"outcome\":\"resolved\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"name_with_friends\":"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir / "tagged.jpg"));
+    const CliRun trained = run("train --bank " + bank + " --json");
+    EXPECT_NE(trained.out.find("s2"), std::string::npos) << trained.out;  // the tagged face made s2 stale
+
+    // Bad tags: outside the photo, a person twice, someone not in the graph, malformed JSON.
+    auto tag_with = [&](const std::string& json) {
+        std::ofstream(dir / "bad.json") << json;
+        return run("tag --bank " + bank + " " + photo + " --tags " + (dir / "bad.json").string() + " --graph " +
+                   (dir / "graph.json").string());
+    };
+    const CliRun outside = tag_with("[{\"person\": \"s1\", \"x\": 5000, \"y\": 10}]");
+    EXPECT_EQ(outside.code, 2);
+    EXPECT_NE(outside.out.find("inside the"), std::string::npos) << outside.out;
+    EXPECT_EQ(tag_with("[{\"person\": \"s1\", \"x\": 5, \"y\": 5}, {\"person\": \"s1\", \"x\": 50, \"y\": 5}]").code, 2);
+    const CliRun stranger = tag_with("[{\"person\": \"zed\", \"x\": 5, \"y\": 5}]");
+    EXPECT_EQ(stranger.code, 2);
+    EXPECT_NE(stranger.out.find("zed"), std::string::npos) << stranger.out;
+    EXPECT_EQ(tag_with("[{\"person\": \"s1\", \"x\": 5").code, 1);
+}
+
+TEST(Cli, EvalTaggingFriendPriorHelpsAndAShuffledGraphDoesNotHurt) {
+    const CliRun r = run("eval tagging --photos 80 --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const double unique = json_number(r.out, "accuracy_one_person_per_face");
+    EXPECT_GT(json_number(r.out, "accuracy_friend_prior"), unique + 0.01);
+    EXPECT_GE(json_number(r.out, "accuracy_shuffled_graph"), unique - 0.005);
+    EXPECT_GT(json_number(r.out, "lift"), 2.0);
+    EXPECT_LT(json_number(r.out, "lift_shuffled"), 1.3);
+    const auto dlib = r.out.find("\"dlib_tag_to_face\"");
+    EXPECT_GE(json_number(r.out, "right_face", dlib), 38);
+    EXPECT_EQ(json_number(r.out, "wrong_face", dlib), 0);
+}

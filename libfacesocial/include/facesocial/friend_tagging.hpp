@@ -49,6 +49,18 @@ struct FaceTag {
 std::vector<FaceTag> tag_faces(const std::vector<BankScores>& faces, const SocialGraph* graph,
                                const FriendTaggingParams& params = {}, const std::vector<std::string>& present = {});
 
+/// How much more often friends appear together than people picked at random: P(friends |
+/// seen together) / P(friends), over the pairs of people in already tagged `photos` (1 = the
+/// graph says nothing about who appears with whom; 0 when no pair was seen together).
+double friend_lift(const std::vector<std::vector<std::string>>& photos, const SocialGraph& graph);
+
+/// A friend bonus backed by evidence: `scale` x ln(lift), never negative. A graph that carries
+/// no signal about who appears together (lift about 1) gets a bonus about 0, so the prior
+/// cannot hurt; a graph whose friends do appear together gets a bonus growing with the lift.
+/// Throws std::invalid_argument for scale < 0.
+double calibrated_friend_bonus(const std::vector<std::vector<std::string>>& photos, const SocialGraph& graph,
+                               double scale = 0.3);
+
 /// One suggested friendship.
 struct FriendSuggestion {
     std::string a, b;  ///< a < b
