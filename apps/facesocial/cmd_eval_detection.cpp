@@ -112,7 +112,7 @@ int cmd_eval_detection(const std::vector<std::string>& argv) {
 }
 
 int cmd_eval(const std::vector<std::string>& argv) {
-    if (argv.empty()) throw UsageError("eval: expected a suite name (detection, orl, identify, unknown, window, threshold, throughput, tagging)");
+    if (argv.empty()) throw UsageError("eval: expected a suite name (detection, orl, identify, unknown, window, threshold, throughput, tagging, training-policy)");
     const std::vector<std::string> rest(argv.begin() + 1, argv.end());
     if (argv[0] == "detection") return cmd_eval_detection(rest);
     if (argv[0] == "orl") return cmd_eval_orl(rest);
@@ -122,6 +122,7 @@ int cmd_eval(const std::vector<std::string>& argv) {
     if (argv[0] == "threshold") return cmd_eval_threshold(rest);
     if (argv[0] == "throughput") return cmd_eval_throughput(rest);
     if (argv[0] == "tagging") return cmd_eval_tagging(rest);
+    if (argv[0] == "training-policy") return cmd_eval_training_policy(rest);
     throw UsageError("eval: unknown suite '" + argv[0] + "'");
 }
 

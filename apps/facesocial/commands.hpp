@@ -19,6 +19,7 @@ int cmd_recognize(const std::vector<std::string>& args);
 int cmd_watch(const std::vector<std::string>& args);
 int cmd_tag(const std::vector<std::string>& args);
 int cmd_eval_tagging(const std::vector<std::string>& args);
+int cmd_eval_training_policy(const std::vector<std::string>& args);
 int cmd_eval_window(const std::vector<std::string>& args);
 int cmd_eval_threshold(const std::vector<std::string>& args);
 int cmd_eval_throughput(const std::vector<std::string>& args);

@@ -46,6 +46,9 @@ commands:
   eval tagging [--data DIR] [--photos N] [--seed S] [--enrol K] [--json]
         group-photo tagging with / without the friend prior (and a shuffled graph), friendship
         suggestions, and the tag-to-face step on dlib_faces
+  eval training-policy [--data DIR] [--samples N] [--wrong SHARE] [--seed S] [--json]
+        accuracy and training time of training-set policies (size cap, newest or spread,
+        pruning of wrongly tagged samples) on ORL
   enrol --bank FILE --person NAME IMAGES|FOLDER [--detect] [--train] [--method KIND] [--mask|--no-mask]
         add face images to a person's training set (creates the bank file if needed; --method
         and --mask choose the classifier and the elliptical mask of a new bank)

@@ -275,3 +275,19 @@ TEST(Cli, EvalTaggingFriendPriorHelpsAndAShuffledGraphDoesNotHurt) {
     EXPECT_GE(json_number(r.out, "right_face", dlib), 38);
     EXPECT_EQ(json_number(r.out, "wrong_face", dlib), 0);
 }
+
+TEST(Cli, EvalTrainingPolicyPrunesWrongTagsAndReportsEveryPolicy) {
+    const CliRun r = run("eval training-policy --samples 20 --wrong 0.2 --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    auto field = [&](const std::string& policy, const std::string& key) {
+        const auto at = r.out.find("\"policy\":\"" + policy + "\"");
+        EXPECT_NE(at, std::string::npos) << policy << " in " << r.out;
+        return json_number(r.out, key, at);
+    };
+    const double wrong = json_number(r.out, "wrong_tags");
+    EXPECT_GT(wrong, 80);
+    EXPECT_EQ(field("all", "wrong_kept"), wrong);
+    EXPECT_LT(field("all, pruned (2 sigma)", "wrong_kept"), 0.25 * wrong);  // 100 samples: 3 of 1184 kept
+    EXPECT_GT(field("cap 10, spread", "accuracy"), field("cap 5, newest", "accuracy"));
+    EXPECT_GT(field("all", "train_seconds"), field("cap 5, newest", "train_seconds"));
+}

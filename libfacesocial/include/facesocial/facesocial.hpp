@@ -1,6 +1,7 @@
 // Umbrella header: everything the library offers.
 #pragma once
 
+#include "facesocial/background_trainer.hpp"
 #include "facesocial/classifier_bank.hpp"
 #include "facesocial/datasets.hpp"
 #include "facesocial/decision.hpp"
@@ -23,6 +24,7 @@
 #include "facesocial/pipeline_runner.hpp"
 #include "facesocial/skin_filter.hpp"
 #include "facesocial/social_graph.hpp"
+#include "facesocial/training_set.hpp"
 #include "facesocial/version.hpp"
 #include "facesocial/video_source.hpp"
 #include "facesocial/vision_pipeline.hpp"
