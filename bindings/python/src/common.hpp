@@ -133,5 +133,6 @@ void bind_detection(py::module_& m);
 void bind_preprocess(py::module_& m);
 void bind_recognition(py::module_& m);
 void bind_video(py::module_& m);
+void bind_social(py::module_& m);
 
 }  // namespace facesocial::python

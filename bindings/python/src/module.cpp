@@ -12,4 +12,5 @@ PYBIND11_MODULE(_facesocial, m) {
     bind_io(m);
     bind_recognition(m);
     bind_video(m);
+    bind_social(m);
 }
