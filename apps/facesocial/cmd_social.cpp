@@ -2,6 +2,7 @@
 // the friend prior) and eval tagging (composed group photos with a generated social graph, and
 // the tag-to-face step on dlib_faces).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -105,12 +106,15 @@ int cmd_tag(const std::vector<std::string>& argv) {
 
     // Tagged faces become training samples; the rest are recognised.
     std::vector<char> tagged(detections.size(), 0);
+    const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
     std::vector<std::string> present;
     for (const TagResolution& r : resolved)
         if (r.outcome == TagOutcome::Resolved) {
             tagged[std::size_t(r.face)] = 1;
             present.push_back(r.tag.person);
-            if (args.flag("--enrol")) bank.add_faces(r.tag.person, {found.faces[std::size_t(r.face)].face.pixels});
+            if (args.flag("--enrol"))
+                bank.add_samples(r.tag.person, {{found.faces[std::size_t(r.face)].face.pixels, SampleSource::SocialPhoto, now,
+                                                 fs::path(args.positional()[0]).filename().string()}});
         }
     std::vector<std::size_t> untagged;
     std::vector<BankScores> scores;

@@ -1,6 +1,9 @@
 #include "facesocial/classifier_bank.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <functional>
+#include <numeric>
 #include <cstring>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +28,7 @@ void ClassifierBankParams::validate() const {
     classifier.validate();
     normalizer.validate();
     unknown.validate();
+    training.validate();
     if (classifier.kind == ClassifierKind::Ehmm && classifier.ehmm.observations.face_size != normalizer.output_size)
         detail::fail("ClassifierBankParams",
                      "normalizer.output_size equal to the EHMM face size " +
@@ -34,9 +38,22 @@ void ClassifierBankParams::validate() const {
 
 namespace {
 
+/// Where a face came from (TrainingSample without the face).
+struct Provenance {
+    SampleSource source = SampleSource::Camera;
+    double time = 0;
+    std::string session;
+};
+
+double wall_clock_seconds() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 struct Person {
     std::string name;
     std::vector<cv::Mat> faces;  // normalised, CV_32FC1; never modified in place
+    std::vector<Provenance> provenance;  // one per face
+    SelectionReport selection;   // of the samples the model was trained from
     uint64_t version = 1;        // bumped by every change of the training set
     uint64_t trained_version = 0;  // version the model was trained from (0 = never)
     EmbeddedHmm model;           // EHMM kind only
@@ -111,20 +128,51 @@ struct ClassifierBank::Impl {
             detail::fail(fn, "a face of the normaliser's size " + detail::size_string(size), detail::size_string(f.size()));
     }
 
-    std::vector<std::string> train_joint();
-    std::vector<std::string> train_ehmm(const std::vector<std::string>* only);
+    /// Chooses the training faces of one person from their samples (the bank's policy).
+    using Selector = std::function<SelectionReport(const std::string&, const std::vector<TrainingSample>&)>;
+
+    std::vector<TrainingSample> samples_of(const Person& p) const {
+        std::vector<TrainingSample> out;
+        for (std::size_t i = 0; i < p.faces.size(); ++i)
+            out.push_back({p.faces[i], p.provenance[i].source, p.provenance[i].time, p.provenance[i].session});
+        return out;
+    }
+    /// Applies the policy outside the lock; keep-all keeps the insertion order.
+    std::pair<std::vector<cv::Mat>, SelectionReport> choose(const std::string& name, const std::vector<TrainingSample>& s,
+                                                            const Selector& select) const {
+        SelectionReport r;
+        if (params.training.keeps_all()) {
+            r.kept.resize(s.size());
+            std::iota(r.kept.begin(), r.kept.end(), 0);
+        } else {
+            r = select(name, s);
+        }
+        std::vector<cv::Mat> faces;
+        for (std::size_t i : r.kept) faces.push_back(s[i].face);
+        return {std::move(faces), std::move(r)};
+    }
+
+    std::vector<std::string> train_joint(const Selector& select);
+    std::vector<std::string> train_ehmm(const std::vector<std::string>* only, const Selector& select);
 };
 
-std::vector<std::string> ClassifierBank::Impl::train_joint() {
+std::vector<std::string> ClassifierBank::Impl::train_joint(const Selector& select) {
     std::vector<std::string> names;
     std::vector<uint64_t> versions;
-    std::vector<std::vector<cv::Mat>> sets;
+    std::vector<std::vector<TrainingSample>> samples;
     {
         std::lock_guard lock(mutex);
         for (const Person& p : people)
-            if (!p.faces.empty()) names.push_back(p.name), versions.push_back(p.version), sets.push_back(p.faces);
+            if (!p.faces.empty()) names.push_back(p.name), versions.push_back(p.version), samples.push_back(samples_of(p));
     }
     if (names.empty()) return {};
+    std::vector<std::vector<cv::Mat>> sets;
+    std::vector<SelectionReport> reports;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        auto [faces, report] = choose(names[i], samples[i], select);
+        sets.push_back(std::move(faces));
+        reports.push_back(std::move(report));
+    }
     std::shared_ptr<FaceClassifier> classifier = FaceClassifier::create(params.classifier);
     classifier->train(sets);
     std::lock_guard lock(mutex);
@@ -134,6 +182,7 @@ std::vector<std::string> ClassifierBank::Impl::train_joint() {
         Person* p = find(names[i]);
         if (!p) continue;  // removed while training
         p->trained_version = std::max(p->trained_version, versions[i]);
+        p->selection = reports[i];
         s->names.push_back(names[i]);
         s->joint_index.push_back(i);
     }
@@ -141,24 +190,27 @@ std::vector<std::string> ClassifierBank::Impl::train_joint() {
     return names;
 }
 
-std::vector<std::string> ClassifierBank::Impl::train_ehmm(const std::vector<std::string>* only) {
+std::vector<std::string> ClassifierBank::Impl::train_ehmm(const std::vector<std::string>* only, const Selector& select) {
     std::vector<std::string> names;
     std::vector<uint64_t> versions;
-    std::vector<std::vector<cv::Mat>> sets;
+    std::vector<std::vector<TrainingSample>> samples;
     {
         std::lock_guard lock(mutex);
         if (only) {
             for (const std::string& n : *only) {
                 Person& p = get(n, "ClassifierBank::train");
                 if (p.faces.empty()) detail::fail("ClassifierBank::train", "training faces for '" + n + "'", "none");
-                names.push_back(n), versions.push_back(p.version), sets.push_back(p.faces);
+                names.push_back(n), versions.push_back(p.version), samples.push_back(samples_of(p));
             }
         } else {
             for (const Person& p : people)
                 if (!p.faces.empty() && p.version != p.trained_version)
-                    names.push_back(p.name), versions.push_back(p.version), sets.push_back(p.faces);
+                    names.push_back(p.name), versions.push_back(p.version), samples.push_back(samples_of(p));
         }
     }
+    std::vector<std::vector<cv::Mat>> sets(names.size());
+    std::vector<SelectionReport> reports(names.size());
+    for (std::size_t i = 0; i < names.size(); ++i) std::tie(sets[i], reports[i]) = choose(names[i], samples[i], select);
     std::vector<EmbeddedHmm> models(names.size());
     detail::parallel_for(
         names.size(), [&](std::size_t i) { models[i] = EmbeddedHmm::train(sets[i], params.classifier.ehmm); },
@@ -169,6 +221,7 @@ std::vector<std::string> ClassifierBank::Impl::train_ehmm(const std::vector<std:
         if (!p || p->trained_version > versions[i]) continue;  // removed, or a newer training won
         p->trained_version = versions[i];
         p->model = std::move(models[i]);
+        p->selection = std::move(reports[i]);
     }
     publish_models();
     return names;
@@ -207,14 +260,24 @@ void ClassifierBank::add_person(const std::string& name) {
     require_name(name, "ClassifierBank::add_person");
     std::lock_guard lock(impl_->mutex);
     if (impl_->find(name)) detail::fail("ClassifierBank::add_person", "a new person", "'" + name + "', already enrolled");
-    impl_->people.push_back(Person{name, {}, 1, 0, {}});
+    impl_->people.push_back(Person{name, {}, {}, {}, 1, 0, {}});
 }
 
 void ClassifierBank::add_faces(const std::string& name, const std::vector<cv::Mat>& faces) {
+    std::vector<TrainingSample> samples;
+    const double now = wall_clock_seconds();
+    for (const cv::Mat& f : faces) samples.push_back({f, SampleSource::Camera, now, {}});
+    add_samples(name, samples);
+}
+
+void ClassifierBank::add_samples(const std::string& name, const std::vector<TrainingSample>& samples) {
     require_name(name, "ClassifierBank::add_faces");
     std::vector<cv::Mat> copies;
-    copies.reserve(faces.size());
-    for (const cv::Mat& f : faces) {
+    copies.reserve(samples.size());
+    for (const TrainingSample& s : samples) {
+        const cv::Mat& f = s.face;
+        if (!std::isfinite(s.capture_time))
+            detail::fail("ClassifierBank::add_samples", "a finite capture time", std::to_string(s.capture_time));
         impl_->check_face(f, "ClassifierBank::add_faces");
         cv::Mat c;
         f.convertTo(c, CV_32F);  // always a fresh buffer: the caller's data is not shared
@@ -224,10 +287,11 @@ void ClassifierBank::add_faces(const std::string& name, const std::vector<cv::Ma
     std::lock_guard lock(impl_->mutex);
     Person* p = impl_->find(name);
     if (!p) {
-        impl_->people.push_back(Person{name, {}, 1, 0, {}});
+        impl_->people.push_back(Person{name, {}, {}, {}, 1, 0, {}});
         p = &impl_->people.back();
     }
     p->faces.insert(p->faces.end(), copies.begin(), copies.end());
+    for (const TrainingSample& s : samples) p->provenance.push_back({s.source, s.capture_time, s.session});
     ++p->version;
 }
 
@@ -235,6 +299,7 @@ void ClassifierBank::clear_faces(const std::string& name) {
     std::lock_guard lock(impl_->mutex);
     Person& p = impl_->get(name, "ClassifierBank::clear_faces");
     p.faces.clear();
+    p.provenance.clear();
     ++p.version;
 }
 
@@ -272,6 +337,24 @@ std::vector<cv::Mat> ClassifierBank::faces(const std::string& name) const {
     return out;
 }
 
+std::vector<TrainingSample> ClassifierBank::samples(const std::string& name) const {
+    std::lock_guard lock(impl_->mutex);
+    std::vector<TrainingSample> out = impl_->samples_of(impl_->get(name, "ClassifierBank::samples"));
+    for (TrainingSample& s : out) s.face = s.face.clone();
+    return out;
+}
+
+SelectionReport ClassifierBank::selection(const std::string& name) const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->get(name, "ClassifierBank::selection").selection;
+}
+
+std::function<SelectionReport(const std::string&, const std::vector<TrainingSample>&)> ClassifierBank::selector() const {
+    return [this](const std::string& name, const std::vector<TrainingSample>& s) {
+        return select_training_samples(s, impl_->params.training, impl_->params.classifier.ehmm, this, name);
+    };
+}
+
 void ClassifierBank::train(const std::string& name) {
     if (impl_->joint_kind()) {
         {
@@ -279,19 +362,19 @@ void ClassifierBank::train(const std::string& name) {
             if (impl_->get(name, "ClassifierBank::train").faces.empty())
                 detail::fail("ClassifierBank::train", "training faces for '" + name + "'", "none");
         }
-        impl_->train_joint();
+        impl_->train_joint(selector());
         return;
     }
     const std::vector<std::string> only{name};
-    impl_->train_ehmm(&only);
+    impl_->train_ehmm(&only, selector());
 }
 
 std::vector<std::string> ClassifierBank::train() {
     if (impl_->joint_kind()) {
         if (stale().empty()) return {};
-        return impl_->train_joint();
+        return impl_->train_joint(selector());
     }
-    return impl_->train_ehmm(nullptr);
+    return impl_->train_ehmm(nullptr, selector());
 }
 
 bool ClassifierBank::is_trained(const std::string& name) const {
@@ -354,8 +437,10 @@ namespace {
 
 constexpr char kMagic[16] = {'F', 'A', 'C', 'E', 'S', 'O', 'C', 'I', 'A', 'L', '-', 'B', 'A', 'N', 'K', '\n'};
 constexpr const char* kWhat = "bank";
-static_assert(ClassifierBank::kFormatVersion == EmbeddedHmm::kLayoutVersion,
-              "bank files hold models in the layout of their own version");
+/// The EHMM layout inside a bank file of `version`: versions 1 and 2 match the model layouts 1
+/// and 2; later bank versions changed only the bank's own parts.
+uint32_t ehmm_layout(uint32_t version) { return std::min(version, EmbeddedHmm::kLayoutVersion); }
+static_assert(EmbeddedHmm::kLayoutVersion == 2, "a new EHMM layout needs a new bank version and ehmm_layout()");
 constexpr uint64_t kMaxFaces = 1u << 20;
 
 using detail::get;
@@ -378,6 +463,10 @@ void write_params(std::ostream& out, const ClassifierBankParams& p) {
     put<double>(out, p.unknown.min_variance);
     put<double>(out, p.unknown.min_score);
     put<double>(out, p.unknown.min_margin);
+    put<uint64_t>(out, p.training.max_size);  // since version 3
+    put<uint8_t>(out, p.training.prefer_recent);
+    put<double>(out, p.training.prune_sigma);
+    put<uint64_t>(out, p.training.min_after_pruning);
 }
 
 ClassifierBankParams read_params(std::istream& in, uint32_t version) {
@@ -387,7 +476,7 @@ ClassifierBankParams read_params(std::istream& in, uint32_t version) {
     if (kind < 0 || kind > int32_t(ClassifierKind::Lbph))
         throw ModelFormatError("<stream>", "bank with unknown classifier kind " + std::to_string(kind));
     c.kind = ClassifierKind(kind);
-    c.ehmm = read_ehmm_params(in, version);
+    c.ehmm = read_ehmm_params(in, ehmm_layout(version));
     for (int* v : {&c.eigen_components, &c.fisher_components, &c.lbph_radius, &c.lbph_neighbors, &c.lbph_grid, &c.num_threads})
         *v = get<int32_t>(in, kWhat);
     NormalizerParams& n = p.normalizer;
@@ -401,6 +490,12 @@ ClassifierBankParams read_params(std::istream& in, uint32_t version) {
     p.unknown.min_variance = get<double>(in, kWhat);
     p.unknown.min_score = get<double>(in, kWhat);
     p.unknown.min_margin = get<double>(in, kWhat);
+    if (version >= 3) {
+        p.training.max_size = std::size_t(get<uint64_t>(in, kWhat));
+        p.training.prefer_recent = get<uint8_t>(in, kWhat) != 0;
+        p.training.prune_sigma = get<double>(in, kWhat);
+        p.training.min_after_pruning = std::size_t(get<uint64_t>(in, kWhat));
+    }
     try {
         p.validate();
     } catch (const std::invalid_argument& e) {
@@ -422,9 +517,13 @@ void ClassifierBank::save(const std::string& path) const {
             put<uint64_t>(body, p.version);
             put<uint64_t>(body, p.trained_version);
             put<uint64_t>(body, p.faces.size());
-            for (const cv::Mat& f : p.faces) {
+            for (std::size_t i = 0; i < p.faces.size(); ++i) {
+                const cv::Mat& f = p.faces[i];
                 CV_Assert(f.isContinuous() && f.type() == CV_32FC1);
                 detail::put_bytes(body, f.ptr<float>(), f.total() * sizeof(float));
+                put<uint8_t>(body, uint8_t(p.provenance[i].source));  // since version 3
+                put<double>(body, p.provenance[i].time);
+                detail::put_string(body, p.provenance[i].session);
             }
             put<uint8_t>(body, !impl_->joint_kind() && !p.model.empty());
             if (!impl_->joint_kind() && !p.model.empty()) p.model.write(body);
@@ -506,10 +605,20 @@ ClassifierBank ClassifierBank::load(const std::string& path) {
                 detail::get_bytes(body, f.ptr<float>(), f.total() * sizeof(float), kWhat);
                 if (!cv::checkRange(f)) throw ModelFormatError("<stream>", "bank face of '" + p.name + "' has non-finite pixels");
                 p.faces.push_back(f);
+                Provenance prov;
+                if (version >= 3) {
+                    const uint8_t source = get<uint8_t>(body, kWhat);
+                    if (source > uint8_t(SampleSource::SocialPhoto))
+                        throw ModelFormatError("<stream>", "bank sample of '" + p.name + "' with unknown source " + std::to_string(source));
+                    prov.source = SampleSource(source);
+                    prov.time = get<double>(body, kWhat);
+                    prov.session = detail::get_string(body, kWhat, 4096);
+                }
+                p.provenance.push_back(std::move(prov));
             }
             if (get<uint8_t>(body, kWhat)) {
                 if (m.joint_kind()) throw ModelFormatError("<stream>", "bank holds an EHMM for a joint classifier");
-                p.model = EmbeddedHmm::read(body, version);
+                p.model = EmbeddedHmm::read(body, ehmm_layout(version));
                 if (p.model.params().observations.face_size != face_size)
                     throw ModelFormatError("<stream>", "model of '" + p.name + "' is for another face size");
             }
@@ -519,7 +628,7 @@ ClassifierBank ClassifierBank::load(const std::string& path) {
         if (m.joint_kind()) {
             // The joint models are rebuilt from the saved training sets.
             if (std::any_of(m.people.begin(), m.people.end(), [](const Person& p) { return p.trained_version > 0; }))
-                m.train_joint();
+                m.train_joint(bank.selector());
         } else {
             m.publish_models();
         }

@@ -1,5 +1,7 @@
 #include "facesocial/training_set.hpp"
 
+#include "facesocial/classifier_bank.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -61,3 +61,17 @@ def test_training_policy_and_background_trainer(orl):
     assert trainer.trained == 1 and bank.is_trained(orl.names[2])
     with pytest.raises(ValueError):
         fs.TrainingPolicy(prune_sigma=-1)
+
+
+def test_bank_keeps_provenance_and_applies_its_policy(orl, tmp_path):
+    params = fs.ClassifierBankParams(normalizer=fs.NormalizerParams.cropped(), training=fs.TrainingPolicy(max_size=2))
+    bank = fs.ClassifierBank(params)
+    bank.add_samples(orl.names[0], [fs.TrainingSample(f, fs.SampleSource.SOCIAL_PHOTO, 10.0 * i, "party")
+                                    for i, f in enumerate(orl.faces[0][:4])])
+    bank.train()
+    assert bank.selection(orl.names[0]).kept == [2, 3]
+    bank.save(tmp_path / "b.fsb")
+    back = fs.ClassifierBank.load(tmp_path / "b.fsb")
+    assert back.params.training.max_size == 2
+    s = back.samples(orl.names[0])
+    assert [x.session for x in s] == ["party"] * 4 and s[1].source == fs.SampleSource.SOCIAL_PHOTO

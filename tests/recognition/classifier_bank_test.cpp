@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <thread>
 
@@ -244,38 +245,121 @@ TEST(ClassifierBank, DamagedFilesGiveClearErrorsAndFailedSavesKeepTheOldFile) {
     EXPECT_THROW(bank.save((dir / "no_such_folder" / "bank.fsb").string()), FileError);
 }
 
-TEST(ClassifierBank, ReadsFormatVersionOne) {
-    // Version 1 differs from version 2 only by the EhmmParams::recluster_mixtures byte after the
-    // EHMM parameters. A joint (Eigenfaces) bank stores those parameters once, at a fixed offset:
-    // kind (4), 6 observation ints (24), super-state count (4), 5 state counts (20), mixtures and
-    // iterations (8), three doubles (24).
+TEST(ClassifierBank, ReadsOlderFormatVersions) {
+    // Rewrites a version-3 file of a joint (Eigenfaces) bank, whose layout is fixed, into the
+    // older layouts: version 2 has no training policy (25 bytes at the end of the params) and no
+    // provenance after each face (source u8, time f64, session string); version 1 also lacks the
+    // EhmmParams::recluster_mixtures byte at offset 84 (kind 4 + EHMM parameters 80).
     test::TempDir dir;
-    const ClassifierBank bank = make_bank(first(3), ClassifierKind::Eigenfaces);
-    const std::string path = (dir / "v2.fsb").string();
+    ClassifierBank bank = make_bank(first(3), ClassifierKind::Eigenfaces);
+    const std::string path = (dir / "v3.fsb").string();
     bank.save(path);
     std::string bytes;
     {
         std::ifstream in(path, std::ios::binary);
         bytes.assign(std::istreambuf_iterator<char>(in), {});
     }
-    const std::size_t head = 16 + 4 + 8, at = head + 84;
-    ASSERT_EQ(bytes[16], char(2));
-    ASSERT_EQ(bytes[at], char(0));
-    std::string payload = bytes.substr(head, bytes.size() - head - 8);
-    payload.erase(84, 1);
-    uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
-    for (unsigned char c : payload) hash = (hash ^ c) * 0x100000001b3ull;
-    std::string v1 = bytes.substr(0, 16);
-    const uint32_t version = 1;
-    const uint64_t size = payload.size();
-    v1.append(reinterpret_cast<const char*>(&version), 4).append(reinterpret_cast<const char*>(&size), 8);
-    v1 += payload;
-    v1.append(reinterpret_cast<const char*>(&hash), 8);
-    std::ofstream(dir / "v1.fsb", std::ios::binary) << v1;
-    const ClassifierBank old = ClassifierBank::load((dir / "v1.fsb").string());
-    EXPECT_FALSE(old.params().classifier.ehmm.recluster_mixtures);
+    const std::size_t head = 16 + 4 + 8;
+    ASSERT_EQ(bytes[16], char(3));
+    const std::string v3 = bytes.substr(head, bytes.size() - head - 8);
+    auto u32 = [&](std::size_t at) { uint32_t v; std::memcpy(&v, v3.data() + at, 4); return std::size_t(v); };
+    auto u64 = [&](std::size_t at) { uint64_t v; std::memcpy(&v, v3.data() + at, 8); return std::size_t(v); };
+    auto older = [&](uint32_t version) {
+        const std::size_t params_end = 84 + 1 + 24 + 34 + 24;  // ... workers, normaliser, unknown rule
+        std::string out = v3.substr(0, params_end);
+        if (version == 1) out.erase(84, 1);
+        std::size_t at = params_end + 25;  // skip the training policy
+        const std::size_t people = u64(at);
+        out += v3.substr(at, 8);
+        at += 8;
+        for (std::size_t p = 0; p < people; ++p) {
+            const std::size_t head_len = 4 + u32(at) + 8 + 8;
+            out += v3.substr(at, head_len + 8);
+            at += head_len;
+            const std::size_t faces = u64(at);
+            at += 8;
+            for (std::size_t f = 0; f < faces; ++f) {
+                out += v3.substr(at, 112 * 92 * 4);
+                at += 112 * 92 * 4 + 1 + 8;
+                at += 4 + u32(at);  // the session
+            }
+            EXPECT_EQ(v3[at], char(0));  // no EHMM in a joint bank
+            out += v3.substr(at, 1);
+            at += 1;
+        }
+        EXPECT_EQ(at, v3.size());
+        uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
+        for (unsigned char c : out) hash = (hash ^ c) * 0x100000001b3ull;
+        const uint64_t size = out.size();
+        std::string file = bytes.substr(0, 16);
+        file.append(reinterpret_cast<const char*>(&version), 4).append(reinterpret_cast<const char*>(&size), 8);
+        file += out;
+        file.append(reinterpret_cast<const char*>(&hash), 8);
+        const auto name = dir / ("v" + std::to_string(version) + ".fsb");
+        std::ofstream(name, std::ios::binary) << file;
+        return ClassifierBank::load(name.string());
+    };
     const cv::Mat probe = orl().faces[1][8];
-    EXPECT_EQ(old.scores(probe).scores, bank.scores(probe).scores);
+    for (uint32_t version : {1u, 2u}) {
+        const ClassifierBank old = older(version);
+        EXPECT_FALSE(old.params().classifier.ehmm.recluster_mixtures);
+        EXPECT_TRUE(old.params().training.keeps_all());
+        EXPECT_EQ(old.samples(orl().names[2]).size(), 5u);
+        EXPECT_EQ(old.samples(orl().names[2])[0].source, SampleSource::Camera);
+        EXPECT_EQ(old.scores(probe).scores, bank.scores(probe).scores) << "version " << version;
+    }
+}
+
+TEST(ClassifierBank, SamplesKeepTheirProvenanceAndThePolicyChoosesTheTrainingFaces) {
+    test::TempDir dir;
+    ClassifierBankParams params = cropped_params();
+    params.training.max_size = 3;  // the newest three
+    ClassifierBank bank(params);
+    std::vector<TrainingSample> samples;
+    for (int i = 0; i < 6; ++i)
+        samples.push_back({orl().faces[4][std::size_t(i)], i % 2 ? SampleSource::SocialPhoto : SampleSource::Camera,
+                           100.0 - 10 * i, "visit " + std::to_string(i)});
+    bank.add_samples(orl().names[4], samples);
+    bank.add_faces(orl().names[5], {orl().faces[5].begin(), orl().faces[5].begin() + 4});
+    bank.train();
+    // Capture times fall with the index: the newest three are samples 0, 1, 2 (oldest first).
+    EXPECT_EQ(bank.selection(orl().names[4]).kept, (std::vector<std::size_t>{2, 1, 0}));
+    EXPECT_EQ(bank.selection(orl().names[4]).capped.size(), 3u);
+    ClassifierBank same(cropped_params());
+    same.add_faces(orl().names[4], {orl().faces[4][2], orl().faces[4][1], orl().faces[4][0]});
+    same.add_faces(orl().names[5], {orl().faces[5].begin() + 1, orl().faces[5].begin() + 4});
+    same.train();
+    const cv::Mat probe = orl().faces[4][8];
+    EXPECT_EQ(bank.scores(probe).scores[0], same.scores(probe).scores[0]);
+
+    bank.save((dir / "bank.fsb").string());
+    const ClassifierBank loaded = ClassifierBank::load((dir / "bank.fsb").string());
+    EXPECT_EQ(loaded.params().training.max_size, 3u);
+    const auto back = loaded.samples(orl().names[4]);
+    ASSERT_EQ(back.size(), 6u);
+    EXPECT_EQ(back[3].source, SampleSource::SocialPhoto);
+    EXPECT_EQ(back[3].capture_time, 70.0);
+    EXPECT_EQ(back[3].session, "visit 3");
+    EXPECT_GT(loaded.samples(orl().names[5])[0].capture_time, 1e9);  // add_faces stamps the wall clock
+    EXPECT_EQ(loaded.scores(probe).scores, bank.scores(probe).scores);
+    EXPECT_THROW(bank.add_samples("x", {{orl().faces[0][0], SampleSource::Camera, NAN, ""}}), std::invalid_argument);
+}
+
+TEST(ClassifierBank, PruningPolicyLeavesWronglyTaggedFacesOut) {
+    ClassifierBankParams params = cropped_params();
+    params.training.max_size = 0;
+    params.training.prune_sigma = 2.0;
+    ClassifierBank bank(params);
+    for (std::size_t q : {std::size_t(10), std::size_t(17), std::size_t(29)})
+        bank.add_faces(orl().names[q], {orl().faces[q].begin(), orl().faces[q].begin() + 5});
+    bank.train();
+    std::vector<TrainingSample> s;
+    for (std::size_t i = 0; i < 8; ++i) s.push_back({orl().faces[3][i], SampleSource::Camera, double(i), "a"});
+    s.push_back({orl().faces[17][7], SampleSource::SocialPhoto, 8, "b"});
+    s.push_back({orl().faces[29][7], SampleSource::SocialPhoto, 9, "b"});
+    bank.add_samples(orl().names[3], s);
+    bank.train(orl().names[3]);
+    EXPECT_EQ(bank.selection(orl().names[3]).pruned, (std::vector<std::size_t>{8, 9}));
 }
 
 TEST(ClassifierBank, BadInputsGiveClearErrors) {

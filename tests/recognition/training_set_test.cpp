@@ -86,7 +86,7 @@ TEST(BackgroundTrainer, RetrainsALargeSetWhileScoringGoesOn) {
     bank->train();
     const cv::Mat probe = orl().faces[1][9];
     const double before = bank->scores(probe).scores[1];
-    bank->add_faces(orl().names[1], augment_faces({orl().faces[1].begin(), orl().faces[1].begin() + 5}, 100, {}, 3));
+    bank->add_faces(orl().names[1], augment_faces({orl().faces[1].begin(), orl().faces[1].begin() + 5}, 30, {}, 3));
     BackgroundTrainer trainer(bank);
     std::atomic<bool> stop{false};
     std::atomic<int> scored{0};
@@ -98,12 +98,14 @@ TEST(BackgroundTrainer, RetrainsALargeSetWhileScoringGoesOn) {
         }
     });
     trainer.request(orl().names[1]);
-    trainer.request(orl().names[1]);  // queued once
+    trainer.request(orl().names[1]);  // queued once while waiting (again if the first already started)
     trainer.request("nobody");
     trainer.wait_idle();
     stop = true;
     scorer.join();
-    EXPECT_EQ(trainer.trained(), 1u);
+    EXPECT_GE(trainer.trained(), 1u);
+    EXPECT_LE(trainer.trained(), 2u);
+    EXPECT_EQ(trainer.pending(), 0u);
     ASSERT_EQ(trainer.errors().size(), 1u);
     EXPECT_NE(trainer.errors()[0].find("nobody"), std::string::npos);
     EXPECT_TRUE(bank->is_trained(orl().names[1]));

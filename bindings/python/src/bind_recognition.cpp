@@ -8,6 +8,7 @@
 #include "facesocial/face_classifier.hpp"
 #include "facesocial/observations.hpp"
 #include "facesocial/open_set_eval.hpp"
+#include "facesocial/training_set.hpp"
 
 namespace facesocial::python {
 
@@ -146,11 +147,45 @@ void bind_recognition(py::module_& m) {
     m.def("decide", py::overload_cast<const std::vector<std::string>&, const std::vector<double>&, const UnknownRule&>(&decide),
           py::arg("names"), py::arg("scores"), py::arg("rule") = UnknownRule{}, "Ranks and applies the unknown rule.");
 
+    // --- training sets -------------------------------------------------------------------------
+    py::enum_<SampleSource>(m, "SampleSource").value("CAMERA", SampleSource::Camera).value("SOCIAL_PHOTO", SampleSource::SocialPhoto);
+    py::class_<TrainingSample>(m, "TrainingSample", "A normalised face with its provenance.")
+        .def(py::init([](const py::array& face, SampleSource source, double time, std::string session) {
+                 return TrainingSample{mat_from_array(face, ArrayKind::Grey, "TrainingSample").clone(), source, time,
+                                       std::move(session)};
+             }),
+             py::arg("face"), py::arg("source") = SampleSource::Camera, py::arg("capture_time") = 0.0,
+             py::arg("session") = "")
+        .def_property_readonly("face", [](const TrainingSample& s) { return array_from_mat(s.face); })
+        .def_readwrite("source", &TrainingSample::source)
+        .def_readwrite("capture_time", &TrainingSample::capture_time)
+        .def_readwrite("session", &TrainingSample::session);
+    ParamsClass<TrainingPolicy>(m, "TrainingPolicy", "Which samples train a person's classifier.")
+        .field("max_size", &TrainingPolicy::max_size, "cap (0 = all)")
+        .field("prefer_recent", &TrainingPolicy::prefer_recent, "over the cap: newest (True) or spread over time")
+        .field("prune_sigma", &TrainingPolicy::prune_sigma, "outlier pruning threshold in robust deviations (0 = off)")
+        .field("min_after_pruning", &TrainingPolicy::min_after_pruning, "never prune below this")
+        .done();
+    py::class_<SelectionReport>(m, "SelectionReport")
+        .def_readonly("kept", &SelectionReport::kept)
+        .def_readonly("pruned", &SelectionReport::pruned)
+        .def_readonly("capped", &SelectionReport::capped);
+    m.def(
+        "select_training_samples",
+        [](const std::vector<TrainingSample>& samples, const TrainingPolicy& policy, const EhmmParams& ehmm,
+           const std::shared_ptr<ClassifierBank>& others, const std::string& person) {
+            py::gil_scoped_release release;
+            return select_training_samples(samples, policy, ehmm, others.get(), person);
+        },
+        py::arg("samples"), py::arg("policy") = TrainingPolicy{}, py::arg("ehmm") = EhmmParams{}, py::arg("others") = nullptr,
+        py::arg("person") = "");
+
     // --- the bank ------------------------------------------------------------------------------
     ParamsClass<ClassifierBankParams>(m, "ClassifierBankParams", "Everything that shapes a bank; saved with it.")
         .field("classifier", &ClassifierBankParams::classifier, "the classifier kind and its parameters")
         .field("normalizer", &ClassifierBankParams::normalizer, "how normalize() prepares faces")
         .field("unknown", &ClassifierBankParams::unknown, "the rule decide() applies")
+        .field("training", &ClassifierBankParams::training, "which samples train a person's model (TrainingPolicy)")
         .done();
     py::class_<BankScores>(m, "BankScores", "Scores of one face against the trained people.")
         .def(py::init([](std::vector<std::string> names, std::vector<double> scores) {
@@ -195,6 +230,16 @@ void bind_recognition(py::module_& m) {
                 b.add_faces(name, in);
             },
             py::arg("name"), py::arg("faces"), "Appends normalised faces (copied), creating the person if needed.")
+        .def(
+            "add_samples",
+            [](ClassifierBank& b, const std::string& name, const std::vector<TrainingSample>& samples) {
+                py::gil_scoped_release release;
+                b.add_samples(name, samples);
+            },
+            py::arg("name"), py::arg("samples"), "Appends TrainingSamples with their provenance.")
+        .def("samples", &ClassifierBank::samples, py::arg("name"), "The person's samples with their provenance.")
+        .def("selection", &ClassifierBank::selection, py::arg("name"),
+             "Which samples the current model was trained from (a SelectionReport).")
         .def("clear_faces", &ClassifierBank::clear_faces, py::arg("name"))
         .def("remove_person", &ClassifierBank::remove_person, py::arg("name"))
         .def("__contains__", &ClassifierBank::contains)

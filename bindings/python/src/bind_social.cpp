@@ -112,38 +112,7 @@ void bind_social(py::module_& m) {
     m.def("friend_lift", &friend_lift, py::arg("photos"), py::arg("graph"));
     m.def("calibrated_friend_bonus", &calibrated_friend_bonus, py::arg("photos"), py::arg("graph"), py::arg("scale") = 0.3);
 
-    // --- training sets -------------------------------------------------------------------------
-    py::enum_<SampleSource>(m, "SampleSource").value("CAMERA", SampleSource::Camera).value("SOCIAL_PHOTO", SampleSource::SocialPhoto);
-    py::class_<TrainingSample>(m, "TrainingSample", "A normalised face with its provenance.")
-        .def(py::init([](const py::array& face, SampleSource source, double time, std::string session) {
-                 return TrainingSample{mat_from_array(face, ArrayKind::Grey, "TrainingSample").clone(), source, time,
-                                       std::move(session)};
-             }),
-             py::arg("face"), py::arg("source") = SampleSource::Camera, py::arg("capture_time") = 0.0,
-             py::arg("session") = "")
-        .def_property_readonly("face", [](const TrainingSample& s) { return array_from_mat(s.face); })
-        .def_readwrite("source", &TrainingSample::source)
-        .def_readwrite("capture_time", &TrainingSample::capture_time)
-        .def_readwrite("session", &TrainingSample::session);
-    ParamsClass<TrainingPolicy>(m, "TrainingPolicy", "Which samples train a person's classifier.")
-        .field("max_size", &TrainingPolicy::max_size, "cap (0 = all)")
-        .field("prefer_recent", &TrainingPolicy::prefer_recent, "over the cap: newest (True) or spread over time")
-        .field("prune_sigma", &TrainingPolicy::prune_sigma, "outlier pruning threshold in robust deviations (0 = off)")
-        .field("min_after_pruning", &TrainingPolicy::min_after_pruning, "never prune below this")
-        .done();
-    py::class_<SelectionReport>(m, "SelectionReport")
-        .def_readonly("kept", &SelectionReport::kept)
-        .def_readonly("pruned", &SelectionReport::pruned)
-        .def_readonly("capped", &SelectionReport::capped);
-    m.def(
-        "select_training_samples",
-        [](const std::vector<TrainingSample>& samples, const TrainingPolicy& policy, const EhmmParams& ehmm,
-           const std::shared_ptr<ClassifierBank>& others, const std::string& person) {
-            py::gil_scoped_release release;
-            return select_training_samples(samples, policy, ehmm, others.get(), person);
-        },
-        py::arg("samples"), py::arg("policy") = TrainingPolicy{}, py::arg("ehmm") = EhmmParams{}, py::arg("others") = nullptr,
-        py::arg("person") = "");
+    // --- background retraining (training sets and policies: bind_recognition.cpp) ----------------
     ParamsClass<BackgroundTrainerParams>(m, "BackgroundTrainerParams", "Parameters of the background trainer.")
         .field("nice", &BackgroundTrainerParams::nice, "niceness of the trainer thread, 0-19")
         .done();

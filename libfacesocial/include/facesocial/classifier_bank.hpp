@@ -8,6 +8,7 @@
 // swaps the new snapshot in atomically, so faces can be scored while a person is retrained.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "facesocial/decision.hpp"
 #include "facesocial/face_classifier.hpp"
 #include "facesocial/face_normalizer.hpp"
+#include "facesocial/training_set.hpp"
 
 namespace facesocial {
 
@@ -25,6 +27,10 @@ struct ClassifierBankParams {
     ClassifierParams classifier;  ///< the classifier kind (EHMM by default) and its parameters
     NormalizerParams normalizer;  ///< how normalize() turns face images into classifier input
     UnknownRule unknown;          ///< the rule decide() applies
+    /// Which of a person's samples train their model: by default all of them; the paper's
+    /// online size is TrainingPolicy{} (the newest 30). Pruning scores samples against the
+    /// bank's other people.
+    TrainingPolicy training = TrainingPolicy::keep_all();
 
     /// Throws std::invalid_argument naming the first invalid field, including a normaliser
     /// output size that differs from the EHMM's observation face size.
@@ -66,6 +72,9 @@ public:
     /// to a person's training set, creating the person if needed. The faces are copied. The
     /// person's model is stale until trained again.
     void add_faces(const std::string& name, const std::vector<cv::Mat>& faces);
+    /// Appends samples with their provenance (source, capture time, session); the faces are
+    /// checked and copied as by add_faces.
+    void add_samples(const std::string& name, const std::vector<TrainingSample>& samples);
     /// Empties a person's training set (the model stays until the person is trained again).
     void clear_faces(const std::string& name);
     /// Removes the person: training set and model. std::invalid_argument when not there.
@@ -77,6 +86,12 @@ public:
     std::size_t face_count(const std::string& name) const;
     /// Copies of the person's normalised training faces.
     std::vector<cv::Mat> faces(const std::string& name) const;
+    /// The person's samples with their provenance (faces copied). Faces added with add_faces
+    /// are camera samples stamped with the wall-clock time of the call.
+    std::vector<TrainingSample> samples(const std::string& name) const;
+    /// Which samples (indices into samples()) the person's current model was trained from,
+    /// and which the training policy left out.
+    SelectionReport selection(const std::string& name) const;
 
     // --- models --------------------------------------------------------------------------------
 
@@ -118,10 +133,13 @@ public:
 
     /// Format version written by save(); load() reads every version up to it.
     /// 1: first layout. 2: EhmmParams::recluster_mixtures stored with the EHMM parameters.
-    static constexpr uint32_t kFormatVersion = 2;
+    /// 3: the training policy, and the provenance of every sample.
+    static constexpr uint32_t kFormatVersion = 3;
 
 private:
     struct Impl;
+    /// The bank's training policy as a function of (name, samples), pruning against this bank.
+    std::function<SelectionReport(const std::string&, const std::vector<TrainingSample>&)> selector() const;
     std::unique_ptr<Impl> impl_;
 };
 

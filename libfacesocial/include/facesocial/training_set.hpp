@@ -10,10 +10,11 @@
 
 #include <opencv2/core.hpp>
 
-#include "facesocial/classifier_bank.hpp"
 #include "facesocial/ehmm.hpp"
 
 namespace facesocial {
+
+class ClassifierBank;
 
 /// Where a sample came from.
 enum class SampleSource {
@@ -47,6 +48,14 @@ struct TrainingPolicy {
     double prune_sigma = 0;
     /// Never prune below this many samples.
     std::size_t min_after_pruning = 3;
+    /// True when the policy keeps every sample as it is (no cap, no pruning).
+    bool keeps_all() const { return max_size == 0 && prune_sigma == 0; }
+    /// No cap, no pruning: every sample trains the model.
+    static TrainingPolicy keep_all() {
+        TrainingPolicy p;
+        p.max_size = 0;
+        return p;
+    }
     /// Throws std::invalid_argument naming the first invalid field.
     void validate() const;
 };
