@@ -81,6 +81,8 @@ struct ClassifierBank::Impl {
     mutable std::mutex mutex;  // guards people, params.unknown and the snapshot pointer
     std::vector<Person> people;
     std::shared_ptr<const Snapshot> snapshot = std::make_shared<Snapshot>();
+    EmbeddedHmm background;         // EHMM, adapted training: the model every person adapts from
+    uint64_t background_people = 0;  // people whose faces trained it
 
     explicit Impl(const ClassifierBankParams& p) : params(p), normalizer(p.normalizer) {}
 
@@ -153,7 +155,8 @@ struct ClassifierBank::Impl {
     }
 
     std::vector<std::string> train_joint(const Selector& select);
-    std::vector<std::string> train_ehmm(const std::vector<std::string>* only, const Selector& select);
+    std::vector<std::string> train_ehmm(const std::vector<std::string>* only, const Selector& select,
+                                        bool rebuild_background = false);
 };
 
 std::vector<std::string> ClassifierBank::Impl::train_joint(const Selector& select) {
@@ -190,32 +193,49 @@ std::vector<std::string> ClassifierBank::Impl::train_joint(const Selector& selec
     return names;
 }
 
-std::vector<std::string> ClassifierBank::Impl::train_ehmm(const std::vector<std::string>* only, const Selector& select) {
+std::vector<std::string> ClassifierBank::Impl::train_ehmm(const std::vector<std::string>* only, const Selector& select,
+                                                         bool rebuild_background) {
+    const bool adapted = params.classifier.ehmm_training == EhmmTraining::Adapted;
     std::vector<std::string> names;
     std::vector<uint64_t> versions;
     std::vector<std::vector<TrainingSample>> samples;
+    EmbeddedHmm prior;
     {
         std::lock_guard lock(mutex);
         if (only) {
             for (const std::string& n : *only) {
                 Person& p = get(n, "ClassifierBank::train");
                 if (p.faces.empty()) detail::fail("ClassifierBank::train", "training faces for '" + n + "'", "none");
-                names.push_back(n), versions.push_back(p.version), samples.push_back(samples_of(p));
             }
-        } else {
-            for (const Person& p : people)
-                if (!p.faces.empty() && p.version != p.trained_version)
-                    names.push_back(p.name), versions.push_back(p.version), samples.push_back(samples_of(p));
+        }
+        std::size_t with_faces = 0;
+        for (const Person& p : people) with_faces += !p.faces.empty();
+        // The background is (re)built on first use, when the bank has doubled since it was
+        // built, or on request; then everyone adapts again from the new one.
+        rebuild_background = adapted && with_faces > 0 &&
+                             (rebuild_background || background.empty() || (!only && with_faces >= 2 * background_people));
+        prior = background;
+        for (const Person& p : people) {
+            const bool wanted = only ? std::find(only->begin(), only->end(), p.name) != only->end()
+                                     : p.version != p.trained_version;
+            if (!p.faces.empty() && (wanted || rebuild_background))
+                names.push_back(p.name), versions.push_back(p.version), samples.push_back(samples_of(p));
         }
     }
     std::vector<std::vector<cv::Mat>> sets(names.size());
     std::vector<SelectionReport> reports(names.size());
     for (std::size_t i = 0; i < names.size(); ++i) std::tie(sets[i], reports[i]) = choose(names[i], samples[i], select);
+    if (rebuild_background) prior = facesocial::train_background(sets, params.classifier);
     std::vector<EmbeddedHmm> models(names.size());
     detail::parallel_for(
-        names.size(), [&](std::size_t i) { models[i] = EmbeddedHmm::train(sets[i], params.classifier.ehmm); },
+        names.size(),
+        [&](std::size_t i) {
+            models[i] = adapted ? EmbeddedHmm::adapt(prior, sets[i], params.classifier.adaptation)
+                                : EmbeddedHmm::train(sets[i], params.classifier.ehmm);
+        },
         params.classifier.num_threads);
     std::lock_guard lock(mutex);
+    if (rebuild_background) background = prior, background_people = names.size();
     for (std::size_t i = 0; i < names.size(); ++i) {
         Person* p = find(names[i]);
         if (!p || p->trained_version > versions[i]) continue;  // removed, or a newer training won
@@ -377,6 +397,16 @@ std::vector<std::string> ClassifierBank::train() {
     return impl_->train_ehmm(nullptr, selector());
 }
 
+std::vector<std::string> ClassifierBank::train_background() {
+    if (impl_->joint_kind() || impl_->params.classifier.ehmm_training != EhmmTraining::Adapted) return {};
+    return impl_->train_ehmm(nullptr, selector(), true);
+}
+
+bool ClassifierBank::has_background() const {
+    std::lock_guard lock(impl_->mutex);
+    return !impl_->background.empty();
+}
+
 bool ClassifierBank::is_trained(const std::string& name) const {
     std::lock_guard lock(impl_->mutex);
     const Person& p = impl_->get(name, "ClassifierBank::is_trained");
@@ -437,10 +467,10 @@ namespace {
 
 constexpr char kMagic[16] = {'F', 'A', 'C', 'E', 'S', 'O', 'C', 'I', 'A', 'L', '-', 'B', 'A', 'N', 'K', '\n'};
 constexpr const char* kWhat = "bank";
-/// The EHMM layout inside a bank file of `version`: versions 1 and 2 match the model layouts 1
-/// and 2; later bank versions changed only the bank's own parts.
-uint32_t ehmm_layout(uint32_t version) { return std::min(version, EmbeddedHmm::kLayoutVersion); }
-static_assert(EmbeddedHmm::kLayoutVersion == 2, "a new EHMM layout needs a new bank version and ehmm_layout()");
+/// The EHMM layout inside a bank file of `version`: bank 1 holds layout 1, banks 2 and 3
+/// layout 2, bank 4 layout 3.
+uint32_t ehmm_layout(uint32_t version) { return version <= 1 ? 1 : version <= 3 ? 2 : 3; }
+static_assert(EmbeddedHmm::kLayoutVersion == 3, "a new EHMM layout needs a new bank version and ehmm_layout()");
 constexpr uint64_t kMaxFaces = 1u << 20;
 
 using detail::get;
@@ -467,6 +497,13 @@ void write_params(std::ostream& out, const ClassifierBankParams& p) {
     put<uint8_t>(out, p.training.prefer_recent);
     put<double>(out, p.training.prune_sigma);
     put<uint64_t>(out, p.training.min_after_pruning);
+    put<uint8_t>(out, uint8_t(c.ehmm_training));  // since version 4
+    put<int32_t>(out, c.background_mixtures);
+    put<double>(out, c.adaptation.relevance);
+    put<int32_t>(out, c.adaptation.iterations);
+    put<uint8_t>(out, c.adaptation.adapt_variances);
+    put<uint8_t>(out, c.adaptation.adapt_weights);
+    put<uint8_t>(out, c.adaptation.adapt_transitions);
 }
 
 ClassifierBankParams read_params(std::istream& in, uint32_t version) {
@@ -495,6 +532,20 @@ ClassifierBankParams read_params(std::istream& in, uint32_t version) {
         p.training.prefer_recent = get<uint8_t>(in, kWhat) != 0;
         p.training.prune_sigma = get<double>(in, kWhat);
         p.training.min_after_pruning = std::size_t(get<uint64_t>(in, kWhat));
+    }
+    if (version >= 4) {
+        const uint8_t training = get<uint8_t>(in, kWhat);
+        if (training > uint8_t(EhmmTraining::Adapted))
+            throw ModelFormatError("<stream>", "bank with unknown EHMM training " + std::to_string(training));
+        c.ehmm_training = EhmmTraining(training);
+        c.background_mixtures = get<int32_t>(in, kWhat);
+        c.adaptation.relevance = get<double>(in, kWhat);
+        c.adaptation.iterations = get<int32_t>(in, kWhat);
+        c.adaptation.adapt_variances = get<uint8_t>(in, kWhat) != 0;
+        c.adaptation.adapt_weights = get<uint8_t>(in, kWhat) != 0;
+        c.adaptation.adapt_transitions = get<uint8_t>(in, kWhat) != 0;
+    } else {
+        c.ehmm_training = EhmmTraining::Independent;  // how the models of older files were trained
     }
     try {
         p.validate();
@@ -527,6 +578,12 @@ void ClassifierBank::save(const std::string& path) const {
             }
             put<uint8_t>(body, !impl_->joint_kind() && !p.model.empty());
             if (!impl_->joint_kind() && !p.model.empty()) p.model.write(body);
+        }
+        const bool background = !impl_->joint_kind() && !impl_->background.empty();  // since version 4
+        put<uint8_t>(body, background);
+        if (background) {
+            put<uint64_t>(body, impl_->background_people);
+            impl_->background.write(body);
         }
     }
     const std::string payload = body.str();
@@ -623,6 +680,13 @@ ClassifierBank ClassifierBank::load(const std::string& path) {
                     throw ModelFormatError("<stream>", "model of '" + p.name + "' is for another face size");
             }
             m.people.push_back(std::move(p));
+        }
+        if (version >= 4 && get<uint8_t>(body, kWhat)) {
+            if (m.joint_kind()) throw ModelFormatError("<stream>", "bank holds an EHMM background for a joint classifier");
+            m.background_people = get<uint64_t>(body, kWhat);
+            m.background = EmbeddedHmm::read(body, ehmm_layout(version));
+            if (m.background.params().observations.face_size != face_size)
+                throw ModelFormatError("<stream>", "background model is for another face size");
         }
         if (body.peek() != std::char_traits<char>::eof()) throw ModelFormatError("<stream>", "bank payload has unread bytes");
         if (m.joint_kind()) {

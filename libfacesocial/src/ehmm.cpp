@@ -12,6 +12,7 @@
 #include "binary_io.hpp"
 #include "checks.hpp"
 #include "ehmm_impl.hpp"
+#include "parallel.hpp"
 #include "facesocial/error.hpp"
 
 namespace facesocial {
@@ -54,6 +55,7 @@ void EhmmParams::validate() const {
     if (!(tolerance >= 0)) bad("tolerance", ">= 0", std::to_string(tolerance));
     if (!(variance_floor > 0 && variance_floor < 1)) bad("variance_floor", "in (0, 1)", std::to_string(variance_floor));
     if (!(min_transition > 0 && min_transition < 0.5)) bad("min_transition", "in (0, 0.5)", std::to_string(min_transition));
+    if (band_margin < -1 || band_margin > 1000) bad("band_margin", "in [-1, 1000]", std::to_string(band_margin));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -74,15 +76,26 @@ void EmbeddedHmm::Impl::set_topology(const EhmmParams& p) {
     log_next.assign(T, std::log(0.5f));
     super_log_self.assign(S, std::log(0.5f));
     super_log_next.assign(S, std::log(0.5f));
+    band_first.assign(S, 0);
+    band_last.assign(S, p.observations.grid().height - 1);
 }
 
 void EmbeddedHmm::Impl::build_emission_weights() {
+    super_of.assign(T, 0);
+    for (int s = 0; s < S; ++s)
+        for (int t = first[s]; t < first[s + 1]; ++t) super_of[t] = s;
+    log_enter.assign(T, kNegInf);
+    for (int s = 0; s < S; ++s)
+        for (int t = first[s] + 1; t < first[s + 1]; ++t) log_enter[t] = log_next[t - 1];
     const int K = T * M;
     W.resize(2 * dim + 1, K);
     for (int k = 0; k < K; ++k) {
-        // Parameters are stored state-major (k = t*M + m); W's columns are mixture-major
-        // (m*T + t) so that the max over mixtures runs over contiguous slabs.
-        const int col = (k % M) * T + k / M;
+        // Parameters are stored state-major (k = t*M + m). W's columns are grouped by
+        // super-state (each a slab of n_s*M columns, so a super-state's band of block rows is
+        // one matrix product), mixture-major inside (m*n_s + i: the max over mixtures runs
+        // over contiguous runs).
+        const int t = k / M, s = super_of[t], n = first[s + 1] - first[s];
+        const int col = first[s] * M + (k % M) * n + (t - first[s]);
         double c = std::log(std::max(weight(k), kMinWeight)) - 0.5 * dim * kLog2Pi;
         for (int j = 0; j < dim; ++j) {
             const double iv = 1.0 / var(k, j);
@@ -108,77 +121,96 @@ void EmbeddedHmm::Impl::features(const Observations& obs, RowMatrixF& F) {
     }
 }
 
-void EmbeddedHmm::Impl::reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
-                                        std::vector<int>* best_mixture) const {
-    // Locals and restrict pointers: stores through the outputs must not force reloads of the
-    // topology, so the inner loops vectorise (compare + blend over the states).
-    const int nT = T, nM = M;
-    E.resize(n, nT);
-    if (best_mixture) best_mixture->assign(std::size_t(n) * nT, 0);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const float* __restrict g = G + i * stride;
-        float* __restrict e = E.row(i).data();
-        std::copy_n(g, nT, e);
-        if (best_mixture) {
-            int* __restrict arg = best_mixture->data() + std::size_t(i) * nT;
-            for (int m = 1; m < nM; ++m) {
-                const float* __restrict gm = g + m * nT;
-                for (int t = 0; t < nT; ++t) {
-                    const bool better = gm[t] > e[t];
-                    e[t] = better ? gm[t] : e[t];
-                    arg[t] = better ? m : arg[t];
+void EmbeddedHmm::Impl::emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture, bool banded) const {
+    // Computed transposed: per super-state s, GT = W_s^T F_band^T holds one row per Gaussian
+    // (m*n_s + i) over the blocks of the band, so the max over mixtures is an element-wise max
+    // of whole rows, vectorised over blocks. F^T of the row-major F is a free view.
+    thread_local RowMatrixF GT, ET;
+    thread_local Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> BT;
+    const cv::Size grid = params.observations.grid();
+    const Eigen::Index N = F.rows(), C = grid.width;
+    ET.setConstant(T, N, kNegInf);
+    if (best_mixture) BT.setZero(T, N);
+    const auto FT = F.transpose();
+    for (int s = 0; s < S; ++s) {
+        const int n = first[s + 1] - first[s];
+        const Eigen::Index b0 = banded ? band_first[s] * C : 0, b1 = banded ? (band_last[s] + 1) * C : N, w = b1 - b0;
+        GT.resize(Eigen::Index(n) * M, w);
+        GT.noalias() = W.middleCols(Eigen::Index(first[s]) * M, Eigen::Index(n) * M).transpose() * FT.middleCols(b0, w);
+        for (int i = 0; i < n; ++i) {
+            float* __restrict e = ET.row(first[s] + i).data() + b0;
+            std::copy_n(GT.row(i).data(), w, e);
+            int* __restrict arg = best_mixture ? BT.row(first[s] + i).data() + b0 : nullptr;
+            for (int m = 1; m < M; ++m) {
+                const float* __restrict g = GT.row(Eigen::Index(m) * n + i).data();
+                if (arg) {
+                    for (Eigen::Index b = 0; b < w; ++b) {
+                        const bool better = g[b] > e[b];
+                        e[b] = better ? g[b] : e[b];
+                        arg[b] = better ? m : arg[b];
+                    }
+                } else {
+                    for (Eigen::Index b = 0; b < w; ++b) e[b] = std::max(e[b], g[b]);
                 }
-            }
-        } else {
-            for (int m = 1; m < nM; ++m) {
-                const float* __restrict gm = g + m * nT;
-                for (int t = 0; t < nT; ++t) e[t] = std::max(e[t], gm[t]);
             }
         }
     }
-}
-
-void EmbeddedHmm::Impl::emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture) const {
-    thread_local RowMatrixF G;
-    G.resize(F.rows(), W.cols());
-    G.noalias() = F * W;
-    reduce_mixtures(G.data(), G.rows(), G.cols(), E, best_mixture);
+    E = ET.transpose();
+    if (best_mixture) {
+        best_mixture->resize(std::size_t(N) * T);
+        Eigen::Map<Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(best_mixture->data(), N, T) = BT.transpose();
+    }
 }
 
 double EmbeddedHmm::Impl::viterbi(const RowMatrixF& E, cv::Size grid, EhmmSegmentation* seg) const {
-    const int R = grid.height, C = grid.width;
-    // Row level: log-likelihood of block row r under super-state s.
-    thread_local std::vector<float> L, delta;
+    const int R = grid.height, C = grid.width, nT = T;
+    // Row level: every block row against every super-state at once. The embedded states of all
+    // super-states form one vector; entering a super-state's first state from the state before
+    // it is impossible (log_enter = -inf), so the super-states do not mix and one vectorised
+    // recurrence over the T states runs them all. L(r, s) is then the log-likelihood of row r
+    // ending in the last state of super-state s.
+    thread_local std::vector<float> L, cur, prev;
     L.resize(std::size_t(R) * S);
-    delta.resize(T);
-    std::vector<uint8_t> advanced;  // back pointers of one row: C x states, 1 = came from i - 1
+    cur.assign(nT + 1, kNegInf);  // index 0 is a -inf guard: "the state before the first"
+    prev.assign(nT + 1, kNegInf);
+    std::vector<uint8_t> advanced;  // back pointers of one row: C x T, 1 = came from t - 1
     std::vector<int> row_paths;     // per (row, super-state): the C embedded states
-    if (seg) row_paths.assign(std::size_t(R) * S * C, 0);
+    if (seg) {
+        advanced.assign(std::size_t(C) * nT, 0);
+        row_paths.assign(std::size_t(R) * S * C, 0);
+    }
+    const float* __restrict ls = log_self.data();
+    const float* __restrict le = log_enter.data();
     for (int r = 0; r < R; ++r) {
+        float* d = cur.data() + 1;
+        float* p = prev.data() + 1;
         const float* e0 = E.row(r * C).data();
-        for (int s = 0; s < S; ++s) {
-            const int t0 = first[s], n = first[s + 1] - first[s];
-            float* d = delta.data();
-            d[0] = e0[t0];
-            for (int i = 1; i < n; ++i) d[i] = kNegInf;
-            if (seg) advanced.assign(std::size_t(C) * n, 0);
-            for (int c = 1; c < C; ++c) {
-                const float* e = E.row(r * C + c).data() + t0;
-                for (int i = n - 1; i >= 0; --i) {
-                    const float stay = d[i] + log_self[t0 + i];
-                    const float adv = i > 0 ? d[i - 1] + log_next[t0 + i - 1] : kNegInf;
-                    const bool a = adv > stay;
-                    if (seg) advanced[std::size_t(c) * n + i] = a;
-                    d[i] = (a ? adv : stay) + e[i];
-                }
-            }
-            L[std::size_t(r) * S + s] = d[n - 1];
+        std::fill_n(d, nT, kNegInf);
+        for (int s = 0; s < S; ++s) d[first[s]] = e0[first[s]];
+        for (int c = 1; c < C; ++c) {
+            std::swap(d, p);
+            const float* __restrict e = E.row(r * C + c).data();
+            float* __restrict out = d;
+            const float* __restrict in = p;
             if (seg) {
+                uint8_t* __restrict a = &advanced[std::size_t(c) * nT];
+                for (int t = 0; t < nT; ++t) {
+                    const float stay = in[t] + ls[t], adv = in[t - 1] + le[t];
+                    a[t] = adv > stay;
+                    out[t] = std::max(stay, adv) + e[t];
+                }
+            } else {
+                for (int t = 0; t < nT; ++t) out[t] = std::max(in[t] + ls[t], in[t - 1] + le[t]) + e[t];
+            }
+        }
+        for (int s = 0; s < S; ++s) L[std::size_t(r) * S + s] = d[first[s + 1] - 1];
+        if (seg) {
+            for (int s = 0; s < S; ++s) {
                 int* path = &row_paths[(std::size_t(r) * S + s) * C];
-                int i = n - 1;
+                int t = first[s + 1] - 1;
                 for (int c = C - 1; c >= 0; --c) {
-                    path[c] = i;
-                    if (c > 0 && advanced[std::size_t(c) * n + i]) --i;
+                    path[c] = t - first[s];
+                    if (c > 0 && advanced[std::size_t(c) * nT + t]) --t;
                 }
             }
         }
@@ -335,6 +367,122 @@ void reestimate(EmbeddedHmm::Impl& m, const Stats& st, const Eigen::VectorXd& fl
     m.build_emission_weights();
 }
 
+void check_training_grids(const std::vector<Observations>& obs, const ObservationParams& params, const char* fn) {
+    const cv::Size grid = params.grid();
+    const int dim = params.dimension();
+    for (const Observations& o : obs) {
+        if (o.grid != grid || o.vectors.rows != grid.area() || o.vectors.cols != dim || o.vectors.type() != CV_32F)
+            detail::fail(fn, "observation grids of " + detail::size_string(grid) + " blocks x " + std::to_string(dim) + " floats",
+                         detail::size_string(o.grid) + " blocks x " + std::to_string(o.vectors.cols));
+        if (!cv::checkRange(o.vectors)) detail::fail(fn, "finite observations", "NaN or infinity in an observation");
+    }
+}
+
+/// Variance floor per dimension: `share` of the observations' own variance (at least 1e-6).
+Eigen::VectorXd variance_floor(const std::vector<Observations>& obs, int dim, double share) {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim), sum_sq = Eigen::VectorXd::Zero(dim);
+    double n = 0;
+    for (const Observations& o : obs)
+        for (int i = 0; i < o.vectors.rows; ++i) {
+            const float* x = o.vectors.ptr<float>(i);
+            for (int d = 0; d < dim; ++d) sum(d) += x[d], sum_sq(d) += double(x[d]) * x[d];
+            n += 1;
+        }
+    Eigen::VectorXd floor(dim);
+    for (int d = 0; d < dim; ++d) {
+        const double mu = sum(d) / n;
+        floor(d) = std::max(share * (sum_sq(d) / n - mu * mu), 1e-6);
+    }
+    return floor;
+}
+
+/// MAP update of `m` from the statistics `st` with `prior` (the background) as the prior.
+void map_update(EmbeddedHmm::Impl& m, const EmbeddedHmm::Impl& prior, const Stats& st, const Eigen::VectorXd& floor,
+                const EhmmAdaptParams& ap) {
+    const double r = ap.relevance;
+    for (int t = 0; t < m.T; ++t) {
+        double state_count = 0;
+        for (int j = 0; j < m.M; ++j) state_count += st.count(t * m.M + j);
+        for (int j = 0; j < m.M; ++j) {
+            const int k = t * m.M + j;
+            const double n = st.count(k), a = n / (n + r);
+            for (int d = 0; d < m.dim; ++d) {
+                const double x = n > 0 ? st.sum(k, d) / n : 0.0, x2 = n > 0 ? st.sum_sq(k, d) / n : 0.0;
+                const double mu0 = prior.mean(k, d), var0 = prior.var(k, d);
+                const double mu = a * x + (1 - a) * mu0;
+                m.mean(k, d) = float(mu);
+                m.var(k, d) = ap.adapt_variances ? float(std::max(a * x2 + (1 - a) * (var0 + mu0 * mu0) - mu * mu, floor(d)))
+                                                 : float(var0);
+            }
+            const double w0 = prior.weight(k);
+            m.weight(k) = float(std::max(ap.adapt_weights && state_count > 0 ? a * n / state_count + (1 - a) * w0 : w0,
+                                         double(kMinWeight)));
+        }
+        const float total = m.weight.segment(t * m.M, m.M).sum();
+        m.weight.segment(t * m.M, m.M) /= total;
+    }
+    if (ap.adapt_transitions) {
+        const double pmin = m.params.min_transition;
+        auto blend = [&](double self, double next, float log_self0) {
+            return (self + r * std::exp(double(log_self0))) / (self + next + r);
+        };
+        for (int s = 0; s < m.S; ++s) {
+            for (int t = m.first[s]; t < m.first[s + 1] - 1; ++t) {  // the last state of a row only stays
+                const double p = blend(st.self[t], st.next[t], prior.log_self[t]);
+                m.log_self[t] = clamp_log(p, pmin);
+                m.log_next[t] = clamp_log(1.0 - p, pmin);
+            }
+            if (s < m.S - 1) {
+                const double p = blend(st.super_self[s], st.super_next[s], prior.super_log_self[s]);
+                m.super_log_self[s] = clamp_log(p, pmin);
+                m.super_log_next[s] = clamp_log(1.0 - p, pmin);
+            }
+        }
+    }
+    m.build_emission_weights();
+}
+
+/// The Viterbi alignments of a training set under the current model.
+struct Alignments {
+    std::vector<EhmmSegmentation> segs;
+    std::vector<std::vector<int>> best;  // per face: best mixture of every (block, state)
+};
+
+/// Aligns every face (in parallel for large sets: the background model trains on hundreds);
+/// returns the summed log-likelihood. The statistics are then added in face order, so the
+/// result does not depend on the number of threads.
+double align_all(const EmbeddedHmm::Impl& m, const std::vector<RowMatrixF>& F, cv::Size grid, Alignments& al) {
+    const std::size_t n = F.size();
+    al.segs.resize(n);
+    al.best.resize(n);
+    std::vector<double> ll(n);
+    auto one = [&](std::size_t i) {
+        thread_local RowMatrixF E;
+        m.emissions(F[i], E, &al.best[i]);
+        ll[i] = m.viterbi(E, grid, &al.segs[i]);
+    };
+    constexpr std::size_t kParallelFrom = 16;
+    detail::parallel_for(n, one, n >= kParallelFrom ? -1 : 1);
+    return std::accumulate(ll.begin(), ll.end(), 0.0);
+}
+
+/// The block rows each super-state took in `segs`, widened by `margin` rows on each side.
+void learn_bands(EmbeddedHmm::Impl& m, const std::vector<EhmmSegmentation>& segs, int margin) {
+    if (segs.empty()) return;
+    const int R = segs.front().grid.height;
+    std::vector<int> lo(m.S, R), hi(m.S, -1);
+    for (const EhmmSegmentation& seg : segs)
+        for (int r = 0; r < R; ++r) {
+            const int s = seg.super_state[r];
+            lo[s] = std::min(lo[s], r);
+            hi[s] = std::max(hi[s], r);
+        }
+    for (int s = 0; s < m.S; ++s) {
+        m.band_first[s] = std::max(0, lo[s] - margin);
+        m.band_last[s] = std::min(R - 1, hi[s] + margin);
+    }
+}
+
 EhmmSegmentation uniform_segmentation(const EmbeddedHmm::Impl& m, cv::Size grid) {
     EhmmSegmentation seg;
     seg.grid = grid;
@@ -366,35 +514,15 @@ EmbeddedHmm EmbeddedHmm::train(const std::vector<Observations>& obs, const EhmmP
     if (obs.empty()) detail::fail("EmbeddedHmm::train", "at least one observation grid", "none");
     const cv::Size grid = params.observations.grid();
     const int dim = params.observations.dimension();
-    for (const Observations& o : obs) {
-        if (o.grid != grid || o.vectors.rows != grid.area() || o.vectors.cols != dim || o.vectors.type() != CV_32F)
-            detail::fail("EmbeddedHmm::train",
-                         "observation grids of " + detail::size_string(grid) + " blocks x " + std::to_string(dim) +
-                             " floats",
-                         detail::size_string(o.grid) + " blocks x " + std::to_string(o.vectors.cols));
-        if (!cv::checkRange(o.vectors))
-            detail::fail("EmbeddedHmm::train", "finite observations", "NaN or infinity in an observation");
-    }
+    check_training_grids(obs, params.observations, "EmbeddedHmm::train");
 
     auto impl = std::make_shared<Impl>();
     Impl& m = *impl;
     m.set_topology(params);
     const int K = m.T * m.M;
 
-    // Variance floor relative to the data's own variance per dimension.
-    Eigen::VectorXd sum = Eigen::VectorXd::Zero(dim), sum_sq = Eigen::VectorXd::Zero(dim);
-    double total_n = 0;
-    for (const Observations& o : obs)
-        for (int i = 0; i < o.vectors.rows; ++i) {
-            const float* x = o.vectors.ptr<float>(i);
-            for (int d = 0; d < dim; ++d) sum(d) += x[d], sum_sq(d) += double(x[d]) * x[d];
-            total_n += 1;
-        }
-    Eigen::VectorXd floor(dim);
-    for (int d = 0; d < dim; ++d) {
-        const double mu = sum(d) / total_n;
-        floor(d) = std::max(params.variance_floor * (sum_sq(d) / total_n - mu * mu), 1e-6);
-    }
+    const double total_n = double(obs.size()) * grid.area();
+    const Eigen::VectorXd floor = variance_floor(obs, dim, params.variance_floor);
 
     // Uniform segmentation, then k-means inside every state.
     std::vector<EhmmSegmentation> segs;
@@ -419,17 +547,15 @@ EmbeddedHmm EmbeddedHmm::train(const std::vector<Observations>& obs, const EhmmP
     std::vector<RowMatrixF> F(obs.size());
     for (std::size_t i = 0; i < obs.size(); ++i) Impl::features(obs[i], F[i]);
     double previous = -std::numeric_limits<double>::infinity();
-    RowMatrixF E;
-    std::vector<int> best_mixture;
+    Alignments al;
     for (int iter = 0; iter < params.max_iterations; ++iter) {
         Stats st(K, dim, m.T, m.S);
-        double ll = 0;
+        const double ll = align_all(m, F, grid, al);
         const bool recluster = params.recluster_mixtures && iter == 1;
         std::vector<std::vector<const float*>> per_state(recluster ? m.T : 0);
         for (std::size_t i = 0; i < obs.size(); ++i) {
-            m.emissions(F[i], E, &best_mixture);
-            EhmmSegmentation seg;
-            ll += m.viterbi(E, grid, &seg);
+            const EhmmSegmentation& seg = al.segs[i];
+            const std::vector<int>& best_mixture = al.best[i];
             for (int b = 0; b < grid.area(); ++b) {
                 const int t = m.first[seg.super_state[b / grid.width]] + seg.state[b];
                 if (recluster)
@@ -450,6 +576,68 @@ EmbeddedHmm EmbeddedHmm::train(const std::vector<Observations>& obs, const EhmmP
         previous = mean_ll;
         reestimate(m, st, floor);
     }
+    if (params.band_margin >= 0) {
+        align_all(m, F, grid, al);
+        learn_bands(m, al.segs, params.band_margin);
+    }
+    EmbeddedHmm out;
+    out.impl_ = std::move(impl);
+    return out;
+}
+
+void EhmmAdaptParams::validate() const {
+    auto bad = [](const std::string& field, const std::string& expected, const std::string& got) {
+        throw std::invalid_argument("EhmmAdaptParams: expected " + field + " " + expected + ", got " + got);
+    };
+    if (!(relevance >= 0 && relevance <= 1e6)) bad("relevance", "in [0, 1e6]", std::to_string(relevance));
+    if (iterations < 1 || iterations > 100) bad("iterations", "in [1, 100]", std::to_string(iterations));
+}
+
+EmbeddedHmm EmbeddedHmm::adapt(const EmbeddedHmm& background, const std::vector<cv::Mat>& faces,
+                               const EhmmAdaptParams& params, EhmmTrainingReport* report) {
+    if (background.empty()) detail::fail("EmbeddedHmm::adapt", "a trained background model", "an empty model");
+    if (faces.empty()) detail::fail("EmbeddedHmm::adapt", "at least one face", "none");
+    std::vector<Observations> obs;
+    obs.reserve(faces.size());
+    for (const cv::Mat& f : faces) obs.push_back(extract_observations(f, background.params().observations));
+    return adapt(background, obs, params, report);
+}
+
+EmbeddedHmm EmbeddedHmm::adapt(const EmbeddedHmm& background, const std::vector<Observations>& obs,
+                               const EhmmAdaptParams& params, EhmmTrainingReport* report) {
+    params.validate();
+    if (background.empty()) detail::fail("EmbeddedHmm::adapt", "a trained background model", "an empty model");
+    if (obs.empty()) detail::fail("EmbeddedHmm::adapt", "at least one observation grid", "none");
+    const Impl& prior = background.impl();
+    check_training_grids(obs, prior.params.observations, "EmbeddedHmm::adapt");
+    const cv::Size grid = prior.params.observations.grid();
+    const Eigen::VectorXd floor = variance_floor(obs, prior.dim, prior.params.variance_floor);
+
+    auto impl = std::make_shared<Impl>(prior);
+    Impl& m = *impl;
+    EhmmTrainingReport local;
+    EhmmTrainingReport& rep = report ? *report : local;
+    rep = {};
+    std::vector<RowMatrixF> F(obs.size());
+    for (std::size_t i = 0; i < obs.size(); ++i) Impl::features(obs[i], F[i]);
+    Alignments al;
+    for (int iter = 0; iter < params.iterations; ++iter) {
+        Stats st(m.T * m.M, m.dim, m.T, m.S);
+        const double ll = align_all(m, F, grid, al);
+        for (std::size_t i = 0; i < obs.size(); ++i) {
+            const EhmmSegmentation& seg = al.segs[i];
+            const std::vector<int>& best_mixture = al.best[i];
+            for (int b = 0; b < grid.area(); ++b) {
+                const int t = m.first[seg.super_state[b / grid.width]] + seg.state[b];
+                st.add(t * m.M + best_mixture[std::size_t(b) * m.T + t], obs[i].vectors.ptr<float>(b), m.dim);
+            }
+            add_transitions(m, seg, st);
+        }
+        rep.mean_log_likelihood.push_back(ll / (double(obs.size()) * grid.area()));
+        rep.iterations = iter + 1;
+        map_update(m, prior, st, floor, params);
+    }
+    rep.converged = true;  // a fixed number of rounds by design
     EmbeddedHmm out;
     out.impl_ = std::move(impl);
     return out;
@@ -497,7 +685,7 @@ double EmbeddedHmm::Impl::score_features(const RowMatrixF& F, cv::Size grid) con
     // Per-thread scratch: scoring runs per face and per person, and fresh buffers of this size
     // would go through mmap and page faults on every call.
     thread_local RowMatrixF E;
-    emissions(F, E);
+    emissions(F, E, nullptr, true);
     return viterbi(E, grid, nullptr) / double(grid.area());
 }
 
@@ -506,7 +694,7 @@ EhmmSegmentation EmbeddedHmm::segment(const Observations& o) const {
     require_grid(m, o, "EmbeddedHmm::segment");
     RowMatrixF F, E;
     Impl::features(o, F);
-    m.emissions(F, E);
+    m.emissions(F, E, nullptr, true);
     EhmmSegmentation seg;
     m.viterbi(E, o.grid, &seg);
     return seg;
@@ -607,6 +795,7 @@ void write_ehmm_params(std::ostream& out, const EhmmParams& p) {
     put<double>(out, p.variance_floor);
     put<double>(out, p.min_transition);
     put<uint8_t>(out, p.recluster_mixtures ? 1 : 0);  // since layout 2
+    put<int32_t>(out, p.band_margin);                 // since layout 3
 }
 
 EhmmParams read_ehmm_params(std::istream& in, uint32_t layout) {
@@ -630,6 +819,7 @@ EhmmParams read_ehmm_params(std::istream& in, uint32_t layout) {
     p.variance_floor = get<double>(in);
     p.min_transition = get<double>(in);
     if (layout >= 2) p.recluster_mixtures = get<uint8_t>(in) != 0;
+    p.band_margin = layout >= 3 ? get<int32_t>(in) : -1;  // older models scored every row
     try {
         p.validate();
     } catch (const std::invalid_argument& e) {
@@ -653,6 +843,7 @@ void EmbeddedHmm::write(std::ostream& out) const {
     put_floats(out, m.log_next.data(), m.T);
     put_floats(out, m.super_log_self.data(), m.S);
     put_floats(out, m.super_log_next.data(), m.S);
+    for (int s = 0; s < m.S; ++s) put<int32_t>(out, m.band_first[s]), put<int32_t>(out, m.band_last[s]);
 }
 
 EmbeddedHmm EmbeddedHmm::read(std::istream& in, uint32_t format_version) {
@@ -674,6 +865,21 @@ EmbeddedHmm EmbeddedHmm::read(std::istream& in, uint32_t format_version) {
     get_floats(in, m.log_next.data(), m.T);
     get_floats(in, m.super_log_self.data(), m.S);
     get_floats(in, m.super_log_next.data(), m.S);
+    if (format_version >= 3) {
+        const int R = p.observations.grid().height;
+        for (int s = 0; s < m.S; ++s) {
+            m.band_first[s] = get<int32_t>(in);
+            m.band_last[s] = get<int32_t>(in);
+        }
+        // Every row must be reachable by some super-state, in order: bands start in row 0,
+        // end in the last row, and each starts no later than one past the previous one's end.
+        bool ok = m.band_first[0] == 0 && m.band_last[m.S - 1] == R - 1;
+        for (int s = 0; s < m.S && ok; ++s) {
+            ok = m.band_first[s] >= 0 && m.band_first[s] <= m.band_last[s] && m.band_last[s] < R;
+            if (s > 0) ok = ok && m.band_first[s] <= m.band_last[s - 1] + 1 && m.band_last[s] >= m.band_last[s - 1];
+        }
+        if (!ok) throw ModelFormatError("<stream>", "embedded HMM with inconsistent row bands");
+    }
     if (!m.mean.allFinite() || !m.weight.allFinite())
         throw ModelFormatError("<stream>", "embedded HMM with non-finite parameters");
     m.build_emission_weights();

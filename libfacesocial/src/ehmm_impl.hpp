@@ -25,23 +25,27 @@ struct EmbeddedHmm::Impl {
     Eigen::VectorXf weight;  // T*M, sums to 1 within each state
     std::vector<float> log_self, log_next;              // per embedded state
     std::vector<float> super_log_self, super_log_next;  // per super-state
+    /// log_enter[t] = log_next[t - 1] within a super-state, -inf for its first state (derived).
+    std::vector<float> log_enter;
+    std::vector<int> super_of;  // super-state of each embedded state (derived)
+    /// Block rows each super-state may take when scoring (all rows unless learned in training).
+    std::vector<int> band_first, band_last;
 
     // Emission log-density of every Gaussian as one linear map of [x^2, x, 1]:
     // log(w N(x; mu, var)) = sum_j (-x_j^2 / (2 var_j) + x_j mu_j / var_j) + c.
-    Eigen::MatrixXf W;  // (2*dim + 1) x T*M, column m*T + t (mixture-major)
+    Eigen::MatrixXf W;  // (2*dim + 1) x T*M: per super-state s a slab of n_s*M columns, m*n_s + i
 
     void set_topology(const EhmmParams& p);
+    /// Derives W and log_enter from the parameters; call after changing any of them.
     void build_emission_weights();
 
     /// [x^2, x, 1] rows of the observations.
     static void features(const Observations& obs, RowMatrixF& F);
     /// E(n, t) = max over mixtures of the Gaussian log-densities; `best_mixture` (optional)
-    /// receives the arg max.
-    void emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture = nullptr) const;
-    /// Emissions from precomputed Gaussian log-densities G (N x T*M, mixture-major columns
-    /// m*T + t as in W, row stride `stride`).
-    void reduce_mixtures(const float* G, Eigen::Index n, Eigen::Index stride, RowMatrixF& E,
-                         std::vector<int>* best_mixture) const;
+    /// receives the arg max. With `banded`, a super-state's states get -inf outside its band
+    /// of block rows (and their densities are not computed there).
+    void emissions(const RowMatrixF& F, RowMatrixF& E, std::vector<int>* best_mixture = nullptr,
+                   bool banded = false) const;
     /// The scaled log-probability (Viterbi log-likelihood per observation) of a face whose
     /// [x^2, x, 1] features are F; uses per-thread scratch for the emissions.
     double score_features(const RowMatrixF& F, cv::Size grid) const;

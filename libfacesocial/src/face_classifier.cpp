@@ -28,11 +28,45 @@ ClassifierKind classifier_kind_from_string(const std::string& name) {
     throw std::invalid_argument("classifier_kind_from_string: expected ehmm, eigen, fisher or lbph, got '" + name + "'");
 }
 
+std::string to_string(EhmmTraining training) {
+    return training == EhmmTraining::Independent ? "independent" : "adapted";
+}
+
+EhmmTraining ehmm_training_from_string(const std::string& name) {
+    for (EhmmTraining t : {EhmmTraining::Independent, EhmmTraining::Adapted})
+        if (to_string(t) == name) return t;
+    throw std::invalid_argument("ehmm_training_from_string: expected independent or adapted, got '" + name + "'");
+}
+
+EhmmParams ClassifierParams::background_params() const {
+    EhmmParams p = ehmm;
+    p.mixtures = background_mixtures;
+    return p;
+}
+
+EmbeddedHmm train_background(const std::vector<std::vector<cv::Mat>>& faces, const ClassifierParams& params,
+                             std::size_t faces_per_person) {
+    if (faces_per_person < 1) detail::fail("train_background", "faces_per_person >= 1", "0");
+    std::vector<cv::Mat> pooled;
+    for (const auto& person : faces) {
+        const std::size_t n = person.size(), take = std::min(n, faces_per_person);
+        for (std::size_t i = 0; i < take; ++i) pooled.push_back(person[i * n / take]);
+    }
+    if (pooled.empty()) detail::fail("train_background", "at least one face", "none");
+    return EmbeddedHmm::train(pooled, params.background_params());
+}
+
 void ClassifierParams::validate() const {
     auto bad = [](const std::string& field, const std::string& expected, int got) {
         throw std::invalid_argument("ClassifierParams: expected " + field + " " + expected + ", got " + std::to_string(got));
     };
-    if (kind == ClassifierKind::Ehmm) ehmm.validate();
+    if (kind == ClassifierKind::Ehmm) {
+        ehmm.validate();
+        if (ehmm_training != EhmmTraining::Independent && ehmm_training != EhmmTraining::Adapted)
+            bad("ehmm_training", "independent or adapted", int(ehmm_training));
+        if (background_mixtures < 1 || background_mixtures > 64) bad("background_mixtures", "in [1, 64]", background_mixtures);
+        adaptation.validate();
+    }
     if (eigen_components < 0) bad("eigen_components", ">= 0", eigen_components);
     if (fisher_components < 0) bad("fisher_components", ">= 0", fisher_components);
     if (lbph_radius < 1) bad("lbph_radius", ">= 1", lbph_radius);
@@ -64,9 +98,17 @@ public:
     void train(const std::vector<std::vector<cv::Mat>>& faces) override {
         require_faces(faces, "EhmmClassifier::train", 1);
         std::vector<EmbeddedHmm> models(faces.size());
-        detail::parallel_for(
-            faces.size(), [&](std::size_t p) { models[p] = EmbeddedHmm::train(faces[p], params_.ehmm); },
-            params_.num_threads);
+        if (params_.ehmm_training == EhmmTraining::Adapted) {
+            const EmbeddedHmm background = train_background(faces, params_);
+            detail::parallel_for(
+                faces.size(),
+                [&](std::size_t p) { models[p] = EmbeddedHmm::adapt(background, faces[p], params_.adaptation); },
+                params_.num_threads);
+        } else {
+            detail::parallel_for(
+                faces.size(), [&](std::size_t p) { models[p] = EmbeddedHmm::train(faces[p], params_.ehmm); },
+                params_.num_threads);
+        }
         models_ = std::move(models);
     }
 

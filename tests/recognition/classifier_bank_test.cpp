@@ -246,13 +246,15 @@ TEST(ClassifierBank, DamagedFilesGiveClearErrorsAndFailedSavesKeepTheOldFile) {
 }
 
 TEST(ClassifierBank, ReadsOlderFormatVersions) {
-    // Rewrites a version-3 file of a joint (Eigenfaces) bank, whose layout is fixed, into the
-    // older layouts: version 2 has no training policy (25 bytes at the end of the params) and no
+    // Rewrites a version-4 file of a joint (Eigenfaces) bank, whose layout is fixed, into the
+    // older layouts. Version 3 has no EHMM band margin (the last 4 bytes of the EHMM
+    // parameters), no adapted-training parameters (20 bytes after the training policy) and no
+    // background flag at the end; version 2 also has no training policy (25 bytes) and no
     // provenance after each face (source u8, time f64, session string); version 1 also lacks the
     // EhmmParams::recluster_mixtures byte at offset 84 (kind 4 + EHMM parameters 80).
     test::TempDir dir;
     ClassifierBank bank = make_bank(first(3), ClassifierKind::Eigenfaces);
-    const std::string path = (dir / "v3.fsb").string();
+    const std::string path = (dir / "v4.fsb").string();
     bank.save(path);
     std::string bytes;
     {
@@ -260,34 +262,40 @@ TEST(ClassifierBank, ReadsOlderFormatVersions) {
         bytes.assign(std::istreambuf_iterator<char>(in), {});
     }
     const std::size_t head = 16 + 4 + 8;
-    ASSERT_EQ(bytes[16], char(3));
-    const std::string v3 = bytes.substr(head, bytes.size() - head - 8);
-    auto u32 = [&](std::size_t at) { uint32_t v; std::memcpy(&v, v3.data() + at, 4); return std::size_t(v); };
-    auto u64 = [&](std::size_t at) { uint64_t v; std::memcpy(&v, v3.data() + at, 8); return std::size_t(v); };
+    ASSERT_EQ(bytes[16], char(4));
+    const std::string v4 = bytes.substr(head, bytes.size() - head - 8);
+    auto u32 = [&](std::size_t at) { uint32_t v; std::memcpy(&v, v4.data() + at, 4); return std::size_t(v); };
+    auto u64 = [&](std::size_t at) { uint64_t v; std::memcpy(&v, v4.data() + at, 8); return std::size_t(v); };
     auto older = [&](uint32_t version) {
-        const std::size_t params_end = 84 + 1 + 24 + 34 + 24;  // ... workers, normaliser, unknown rule
-        std::string out = v3.substr(0, params_end);
+        std::string out = v4.substr(0, 85);  // kind + EHMM parameters up to recluster_mixtures
         if (version == 1) out.erase(84, 1);
-        std::size_t at = params_end + 25;  // skip the training policy
+        std::size_t at = 89;                 // past band_margin
+        out += v4.substr(at, 24 + 34 + 24);  // workers, normaliser, unknown rule
+        at += 24 + 34 + 24;
+        if (version == 3) out += v4.substr(at, 25);  // the training policy
+        at += 25 + 20;                               // ... and the adapted-training parameters
         const std::size_t people = u64(at);
-        out += v3.substr(at, 8);
+        out += v4.substr(at, 8);
         at += 8;
         for (std::size_t p = 0; p < people; ++p) {
             const std::size_t head_len = 4 + u32(at) + 8 + 8;
-            out += v3.substr(at, head_len + 8);
+            out += v4.substr(at, head_len + 8);
             at += head_len;
             const std::size_t faces = u64(at);
             at += 8;
             for (std::size_t f = 0; f < faces; ++f) {
-                out += v3.substr(at, 112 * 92 * 4);
+                const std::size_t start = at;
                 at += 112 * 92 * 4 + 1 + 8;
                 at += 4 + u32(at);  // the session
+                out += version == 3 ? v4.substr(start, at - start) : v4.substr(start, 112 * 92 * 4);
             }
-            EXPECT_EQ(v3[at], char(0));  // no EHMM in a joint bank
-            out += v3.substr(at, 1);
+            EXPECT_EQ(v4[at], char(0));  // no EHMM in a joint bank
+            out += v4.substr(at, 1);
             at += 1;
         }
-        EXPECT_EQ(at, v3.size());
+        EXPECT_EQ(v4[at], char(0));  // no background model
+        at += 1;
+        EXPECT_EQ(at, v4.size());
         uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
         for (unsigned char c : out) hash = (hash ^ c) * 0x100000001b3ull;
         const uint64_t size = out.size();
@@ -300,14 +308,51 @@ TEST(ClassifierBank, ReadsOlderFormatVersions) {
         return ClassifierBank::load(name.string());
     };
     const cv::Mat probe = orl().faces[1][8];
-    for (uint32_t version : {1u, 2u}) {
+    for (uint32_t version : {1u, 2u, 3u}) {
         const ClassifierBank old = older(version);
         EXPECT_FALSE(old.params().classifier.ehmm.recluster_mixtures);
+        EXPECT_EQ(old.params().classifier.ehmm.band_margin, -1) << "version " << version;
+        EXPECT_EQ(old.params().classifier.ehmm_training, EhmmTraining::Independent) << "version " << version;
         EXPECT_TRUE(old.params().training.keeps_all());
         EXPECT_EQ(old.samples(orl().names[2]).size(), 5u);
-        EXPECT_EQ(old.samples(orl().names[2])[0].source, SampleSource::Camera);
+        EXPECT_EQ(old.samples(orl().names[2])[0].source, version == 3 ? bank.samples(orl().names[2])[0].source
+                                                                          : SampleSource::Camera);
         EXPECT_EQ(old.scores(probe).scores, bank.scores(probe).scores) << "version " << version;
     }
+}
+
+TEST(ClassifierBank, AdaptedTrainingKeepsOneBackgroundThroughRetrainsAndFiles) {
+    // Adapted EHMM training (the default): the first training builds the background from
+    // everyone; retraining one person adapts only them from the same background; save + load
+    // keeps background and scores.
+    test::TempDir dir;
+    ClassifierBankParams params = cropped_params();
+    ASSERT_EQ(params.classifier.ehmm_training, EhmmTraining::Adapted);
+    ClassifierBank bank(params);
+    for (std::size_t p = 0; p < 4; ++p) bank.add_faces(orl().names[p], train_faces(p));
+    EXPECT_FALSE(bank.has_background());
+    EXPECT_EQ(bank.train().size(), 4u);
+    EXPECT_TRUE(bank.has_background());
+    const cv::Mat probe = orl().faces[2][7];
+    const BankScores before = bank.scores(probe);
+    EXPECT_EQ(bank.rank(probe, 1).front().name, orl().names[2]);
+    // One more face for person 0: only they are retrained, the others keep their scores.
+    bank.add_faces(orl().names[0], {orl().faces[0][5]});
+    EXPECT_EQ(bank.train(), std::vector<std::string>{orl().names[0]});
+    const BankScores after = bank.scores(probe);
+    for (std::size_t i = 1; i < 4; ++i) EXPECT_EQ(after.scores[i], before.scores[i]) << i;
+    EXPECT_NE(after.scores[0], before.scores[0]);
+    const std::string path = (dir / "adapted.fsb").string();
+    bank.save(path);
+    const ClassifierBank loaded = ClassifierBank::load(path);
+    EXPECT_TRUE(loaded.has_background());
+    EXPECT_EQ(loaded.scores(probe).scores, after.scores);
+    // Doubling the bank rebuilds the background and retrains everyone.
+    ClassifierBank grown = ClassifierBank::load(path);
+    for (std::size_t p = 4; p < 8; ++p) grown.add_faces(orl().names[p], train_faces(p));
+    EXPECT_EQ(grown.train().size(), 8u);
+    EXPECT_NE(grown.scores(probe).scores[1], after.scores[1]);
+    EXPECT_EQ(grown.train_background().size(), 8u);
 }
 
 TEST(ClassifierBank, SamplesKeepTheirProvenanceAndThePolicyChoosesTheTrainingFaces) {

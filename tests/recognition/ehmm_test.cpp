@@ -177,3 +177,70 @@ TEST(Ehmm, BadInputsAndParamsGiveClearErrors) {
     p.variance_floor = 0;
     EXPECT_THROW(p.validate(), std::invalid_argument);
 }
+
+TEST(Ehmm, AdaptationFromABackgroundRecognisesBetterThanTheBackground) {
+    // A background trained on five people, adapted to each: every adapted model prefers its
+    // own held-out faces to the background's fit, and recognition over the five is at least as
+    // good as with independent models. The background's row bands carry over.
+    std::vector<cv::Mat> pooled;
+    for (int p = 1; p <= 5; ++p)
+        for (const cv::Mat& f : orl_faces(p, 1, 5)) pooled.push_back(f);
+    EhmmParams bp;
+    bp.mixtures = 8;
+    const EmbeddedHmm background = EmbeddedHmm::train(pooled, bp);
+    std::vector<EmbeddedHmm> models;
+    EhmmTrainingReport report;
+    for (int p = 1; p <= 5; ++p) models.push_back(EmbeddedHmm::adapt(background, orl_faces(p, 1, 5), {}, &report));
+    EXPECT_EQ(report.iterations, EhmmAdaptParams{}.iterations);
+    EXPECT_GT(report.mean_log_likelihood.back(), report.mean_log_likelihood.front());
+    EXPECT_EQ(models[0].params().mixtures, 8);
+    int correct = 0;
+    for (int p = 1; p <= 5; ++p)
+        for (const cv::Mat& f : orl_faces(p, 6, 10)) {
+            EXPECT_GT(models[p - 1].score(f), background.score(f));
+            int best = 0;
+            for (int q = 1; q < 5; ++q)
+                if (models[q].score(f) > models[best].score(f)) best = q;
+            correct += best == p - 1;
+        }
+    EXPECT_GE(correct, 24);  // of 25
+    // Saved and read back, an adapted model scores the same.
+    std::stringstream ss;
+    models[1].write(ss);
+    EXPECT_EQ(EmbeddedHmm::read(ss).score(orl_faces(2, 6, 6)[0]), models[1].score(orl_faces(2, 6, 6)[0]));
+}
+
+TEST(Ehmm, BandsConfineSuperStatesAndCanBeTurnedOff) {
+    const auto faces = orl_faces(3, 1, 5);
+    EhmmParams p;
+    const EmbeddedHmm banded = EmbeddedHmm::train(faces, p);
+    p.band_margin = -1;
+    const EmbeddedHmm open = EmbeddedHmm::train(faces, p);
+    // The same training; the band can only remove alignments, so the open model scores at
+    // least as high, and on the training faces (whose alignments lie in the band) the same.
+    const cv::Mat probe = orl_faces(3, 7, 7)[0];
+    EXPECT_GE(open.score(probe), banded.score(probe));
+    EXPECT_DOUBLE_EQ(open.score(faces[0]), banded.score(faces[0]));
+    // A segmentation under the banded model keeps every super-state inside its band: the
+    // forehead super-state never reaches the last block row.
+    const EhmmSegmentation seg = banded.segment(extract_observations(probe, p.observations));
+    EXPECT_EQ(seg.super_state.front(), 0);
+    EXPECT_EQ(seg.super_state.back(), int(p.states.size()) - 1);
+}
+
+TEST(Ehmm, AdaptationRejectsBadInputs) {
+    const auto faces = orl_faces(1, 1, 2);
+    EXPECT_THROW(EmbeddedHmm::adapt(EmbeddedHmm(), faces), std::invalid_argument);
+    const EmbeddedHmm background = EmbeddedHmm::train(faces);
+    EXPECT_THROW(EmbeddedHmm::adapt(background, std::vector<cv::Mat>{}), std::invalid_argument);
+    EXPECT_THROW(EmbeddedHmm::adapt(background, std::vector<cv::Mat>{cv::Mat(112, 92, CV_16U)}), std::invalid_argument);
+    EhmmAdaptParams ap;
+    ap.relevance = -1;
+    EXPECT_THROW(EmbeddedHmm::adapt(background, faces, ap), std::invalid_argument);
+    ap = {};
+    ap.iterations = 0;
+    EXPECT_THROW(ap.validate(), std::invalid_argument);
+    EhmmParams p;
+    p.band_margin = -2;
+    EXPECT_THROW(p.validate(), std::invalid_argument);
+}

@@ -96,12 +96,21 @@ public:
     // --- models --------------------------------------------------------------------------------
 
     /// Retrains one person from their current training set. With the EHMM only that person's
-    /// model changes; the joint classifiers (Eigenfaces, Fisherfaces, LBPH) retrain everyone.
+    /// model changes (adapted training: from the bank's background model, built first from
+    /// everyone's faces if there is none yet, which retrains everyone); the joint classifiers
+    /// (Eigenfaces, Fisherfaces, LBPH) retrain everyone.
     /// std::invalid_argument for an unknown person or an empty training set.
     void train(const std::string& name);
     /// Retrains everyone whose training set changed since their last training (in parallel),
-    /// skipping empty training sets. Returns the names trained.
+    /// skipping empty training sets. Adapted EHMM training first rebuilds the background model
+    /// when there is none or the number of people has doubled since it was built, and then
+    /// retrains everyone. Returns the names trained.
     std::vector<std::string> train();
+    /// Adapted EHMM training: rebuilds the background model from everyone's training faces and
+    /// retrains everyone from it. Returns the names trained (none for other kinds).
+    std::vector<std::string> train_background();
+    /// True when the bank holds a background model (adapted EHMM training, after training).
+    bool has_background() const;
     /// True when the person's model reflects their current training set.
     bool is_trained(const std::string& name) const;
     /// The people recognition covers (those with a model), in the order of scores().
@@ -134,7 +143,8 @@ public:
     /// Format version written by save(); load() reads every version up to it.
     /// 1: first layout. 2: EhmmParams::recluster_mixtures stored with the EHMM parameters.
     /// 3: the training policy, and the provenance of every sample.
-    static constexpr uint32_t kFormatVersion = 3;
+    /// 4: EHMM adapted training (parameters and the background model), EHMM layout 3 (row bands).
+    static constexpr uint32_t kFormatVersion = 4;
 
 private:
     struct Impl;

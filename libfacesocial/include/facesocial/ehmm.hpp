@@ -31,11 +31,31 @@ struct EhmmParams {
     /// far better (see docs/ehmm.md), but on ORL's five faces per person it costs 0.3 points, so
     /// it is off by default.
     bool recluster_mixtures = false;
+    /// After training, each super-state is confined to the block rows it took in the training
+    /// faces, widened by this many rows on each side, and scoring evaluates its Gaussians only
+    /// there (about 40% less work with the defaults). -1: every super-state may take every row.
+    int band_margin = 2;
 
     /// Throws std::invalid_argument naming the first invalid field, including a grid too small
     /// for the topology (fewer block rows than super-states or fewer columns than states).
     void validate() const;
     int total_states() const;
+};
+
+/// Maximum a-posteriori adaptation of a background model (trained on many people) to one
+/// person: every Gaussian, mixture weight and transition moves from the background's value
+/// towards the statistics of the person's observations aligned to it, by the share
+/// n / (n + relevance) where n counts those observations. Parts the person's few images hardly
+/// show stay close to the background instead of being fitted to a handful of blocks.
+struct EhmmAdaptParams {
+    double relevance = 4.0;          ///< the background's weight, in observations
+    int iterations = 3;              ///< rounds of {Viterbi segmentation, update}
+    bool adapt_variances = true;     ///< else the person keeps the background's variances
+    bool adapt_weights = true;       ///< mixture weights
+    bool adapt_transitions = true;   ///< transitions of both levels
+
+    /// Throws std::invalid_argument naming the first invalid field.
+    void validate() const;
 };
 
 /// The Viterbi alignment of one face to a model.
@@ -72,6 +92,15 @@ public:
     static EmbeddedHmm train(const std::vector<Observations>& observations, const EhmmParams& params,
                              EhmmTrainingReport* report = nullptr);
 
+    /// Adapts `background` to one person's faces (resized to the background's face size) by MAP
+    /// re-estimation (EhmmAdaptParams). The result has the background's topology and parameters.
+    /// std::invalid_argument for an empty background or no face.
+    static EmbeddedHmm adapt(const EmbeddedHmm& background, const std::vector<cv::Mat>& faces,
+                             const EhmmAdaptParams& params = {}, EhmmTrainingReport* report = nullptr);
+    /// Adapts to observation grids (all of the background's grid size).
+    static EmbeddedHmm adapt(const EmbeddedHmm& background, const std::vector<Observations>& observations,
+                             const EhmmAdaptParams& params = {}, EhmmTrainingReport* report = nullptr);
+
     /// True for a default-constructed model (nothing trained or loaded).
     bool empty() const;
     const EhmmParams& params() const;
@@ -97,7 +126,8 @@ public:
     /// Reads what write() wrote, or the layout of an older bank `format_version`. Throws
     /// ModelFormatError (path given as "<stream>") on a short or inconsistent stream.
     static EmbeddedHmm read(std::istream& in, uint32_t format_version = kLayoutVersion);
-    static constexpr uint32_t kLayoutVersion = 2;  ///< layout written by write()
+    /// Layouts: 1 first; 2 adds recluster_mixtures; 3 adds band_margin and the row bands.
+    static constexpr uint32_t kLayoutVersion = 3;  ///< layout written by write()
 
     struct Impl;  ///< private
     const Impl& impl() const;

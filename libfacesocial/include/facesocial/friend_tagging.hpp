@@ -59,7 +59,7 @@ double friend_lift(const std::vector<std::vector<std::string>>& photos, const So
 /// cannot hurt; a graph whose friends do appear together gets a bonus growing with the lift.
 /// Throws std::invalid_argument for scale < 0.
 double calibrated_friend_bonus(const std::vector<std::vector<std::string>>& photos, const SocialGraph& graph,
-                               double scale = 0.3);
+                               double scale = 0.1);
 
 /// One suggested friendship.
 struct FriendSuggestion {
